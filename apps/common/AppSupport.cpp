@@ -1,0 +1,166 @@
+#include "AppSupport.h"
+
+#include <osgLoA/city/CityCameras>
+
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+#include <osgDB/Registry>
+
+#include <cmath>
+#include <sstream>
+
+namespace loa
+{
+
+Args::Args(int argc, char** argv)
+{
+    for (int i = 1; i < argc; ++i)
+        _words.emplace_back(argv[i]);
+}
+
+std::string Args::next()
+{
+    std::string w = _words.front();
+    _words.erase(_words.begin());
+    return w;
+}
+
+std::string Args::value(const std::string& option)
+{
+    if (_words.empty())
+        throw UsageError(option + " needs a value");
+    return next();
+}
+
+void parseSize(const std::string& text, int& width, int& height)
+{
+    const auto x = text.find('x');
+    std::size_t u1 = 0, u2 = 0;
+    long w = 0, h = 0;
+    try
+    {
+        if (x == std::string::npos)
+            throw std::invalid_argument("no x");
+        const std::string a = text.substr(0, x), b = text.substr(x + 1);
+        w = std::stol(a, &u1);
+        h = std::stol(b, &u2);
+        if (u1 != a.size() || u2 != b.size())
+            throw std::invalid_argument("trailing");
+    }
+    catch (const std::exception&)
+    {
+        throw UsageError("--size '" + text + "' is not WIDTHxHEIGHT (e.g. 1280x720)");
+    }
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw UsageError("--size '" + text + "' is outside 1x1 .. 16384x16384");
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
+}
+
+osg::Vec3d parseVec3(const std::string& option, const std::string& text)
+{
+    std::string s = text;
+    for (char& c : s)
+        if (c == ',')
+            c = ' ';
+    std::istringstream in(s);
+    double v[3];
+    std::string rest;
+    if (!(in >> v[0] >> v[1] >> v[2]) || (in >> rest) || !std::isfinite(v[0]) || !std::isfinite(v[1]) ||
+        !std::isfinite(v[2]))
+        throw UsageError(option + " '" + text + "' is not X,Y,Z");
+    return osg::Vec3d(v[0], v[1], v[2]);
+}
+
+unsigned parseCount(const std::string& option, const std::string& text, unsigned max)
+{
+    std::size_t used = 0;
+    long long v = -1;
+    try
+    {
+        v = std::stoll(text, &used);
+    }
+    catch (const std::exception&)
+    {
+        used = 0;
+    }
+    if (used != text.size() || v < 0 || v > static_cast<long long>(max))
+        throw UsageError(option + " '" + text + "' is not an integer in 0.." + std::to_string(max));
+    return static_cast<unsigned>(v);
+}
+
+osg::ref_ptr<osg::Node> loadModel(const std::string& path)
+{
+    if (!osgDB::fileExists(path))
+        throw std::runtime_error("cannot read '" + path + "': no such file");
+    if (osgDB::fileType(path) == osgDB::DIRECTORY)
+        throw std::runtime_error("cannot read '" + path + "': it is a directory");
+    const std::string ext = osgDB::getLowerCaseFileExtension(path);
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
+    if (!rw)
+        throw std::runtime_error("cannot read '" + path + "': no osgDB plugin reads '." + ext + "' files");
+    osgDB::ReaderWriter::ReadResult rr = rw->readNode(path, osgDB::Registry::instance()->getOptions());
+    if (!rr.validNode())
+    {
+        std::string why = rr.message();
+        if (why.empty())
+            why = rr.status() == osgDB::ReaderWriter::ReadResult::FILE_NOT_HANDLED
+                      ? "the '" + ext + "' plugin does not handle it"
+                      : "the file is malformed or holds no scene";
+        throw std::runtime_error("cannot read '" + path + "': " + why);
+    }
+    return rr.getNode();
+}
+
+std::string CameraChoice::describe() const
+{
+    std::ostringstream o;
+    if (!name.empty())
+        o << "camera '" << name << "'";
+    else if (haveEye)
+        o << "eye " << eye.x() << "," << eye.y() << "," << eye.z() << " centre " << center.x() << "," << center.y()
+          << "," << center.z();
+    else
+        o << "framing the bounding sphere";
+    return o.str();
+}
+
+void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice)
+{
+    const auto& s = renderer.getSettings();
+    const double aspect = static_cast<double>(s.width) / s.height;
+    if (!choice.name.empty())
+    {
+        const osgLoA::CameraPose pose = osgLoA::CityCameras::compute(choice.name, *renderer.getSceneData(), aspect);
+        renderer.setPerspective(pose.fovy);
+        renderer.setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+    }
+    else if (choice.haveEye)
+    {
+        if ((choice.center - choice.eye).length2() == 0.0)
+            throw UsageError("--eye and --center must differ");
+        if (((choice.center - choice.eye) ^ choice.up).length2() == 0.0)
+            throw UsageError("--up must not be parallel to the view direction");
+        renderer.setViewMatrixAsLookAt(choice.eye, choice.center, choice.up);
+    }
+    else
+        renderer.frameScene();
+}
+
+std::string jsonEscape(const std::string& s)
+{
+    std::string out;
+    for (char c : s)
+    {
+        if (c == '"' || c == '\\')
+            out += '\\', out += c;
+        else if (static_cast<unsigned char>(c) < 0x20)
+            out += ' ';
+        else
+            out += c;
+    }
+    return out;
+}
+
+} // namespace loa

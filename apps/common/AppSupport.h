@@ -1,0 +1,73 @@
+// Shared by the command-line tools: strict argument parsing and scene loading.
+#ifndef OSGLOA_APPS_APPSUPPORT_H
+#define OSGLOA_APPS_APPSUPPORT_H 1
+
+#include <osgLoA/city/CityParameters>
+#include <osgLoA/render/OffscreenRenderer>
+
+#include <osg/Node>
+#include <osg/Vec3d>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace loa
+{
+
+/** A usage error: printed as "<tool>: error: <what>" with exit status 2. */
+struct UsageError : std::runtime_error
+{
+    using std::runtime_error::runtime_error;
+};
+
+/** Exit codes shared by every tool. */
+enum ExitCode
+{
+    kOk = 0,
+    kFailure = 1,    ///< the work itself failed (unreadable model, write error, shader error)
+    kUsage = 2,      ///< bad arguments
+    kNoContext = 3,  ///< no usable EGL / OpenGL
+};
+
+/** argv as a queue of words with strict option parsing. */
+class Args
+{
+public:
+    Args(int argc, char** argv);
+    bool empty() const { return _words.empty(); }
+    /** Removes and returns the next word. */
+    std::string next();
+    const std::string& peek() const { return _words.front(); }
+    /** The value of option `option` (the word after it); throws UsageError if missing. */
+    std::string value(const std::string& option);
+
+private:
+    std::vector<std::string> _words;
+};
+
+/** "WxH" with 1 <= W, H <= 16384. */
+void parseSize(const std::string& text, int& width, int& height);
+/** "X,Y,Z" of finite numbers. */
+osg::Vec3d parseVec3(const std::string& option, const std::string& text);
+/** A non-negative integer up to max. */
+unsigned parseCount(const std::string& option, const std::string& text, unsigned max);
+
+/** Loads a model file with osgDB, or throws std::runtime_error with one clear sentence. */
+osg::ref_ptr<osg::Node> loadModel(const std::string& path);
+
+/** Applies --camera NAME or --eye/--center/--up, or frames the scene. */
+struct CameraChoice
+{
+    std::string name;
+    bool haveEye = false, haveCenter = false, haveUp = false;
+    osg::Vec3d eye, center, up = osg::Vec3d(0, 0, 1);
+    std::string describe() const;
+};
+void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice);
+
+std::string jsonEscape(const std::string& s);
+
+} // namespace loa
+
+#endif

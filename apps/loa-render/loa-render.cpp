@@ -1,0 +1,250 @@
+// loa-render: renders a model (or the built-in demo city) headless through EGL to a PNG.
+#include "../common/AppSupport.h"
+
+#include <osgLoA/Version>
+#include <osgLoA/city/CityCameras>
+#include <osgLoA/city/CityGenerator>
+#include <osgLoA/render/OffscreenRenderer>
+#include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/util/AtomicFile>
+#include <osgLoA/util/ImageFile>
+#include <osgLoA/util/MachineInfo>
+#include <osgLoA/util/SceneStatistics>
+
+#include <osg/Uniform>
+#include <osgDB/FileNameUtils>
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace
+{
+const char* kHelp = R"(usage: loa-render [MODEL] [options]
+
+Renders MODEL (any file osgDB reads: .osgb, .osgt, .obj, ...) headless through EGL into a PNG.
+Without MODEL it renders the built-in demo city.
+
+options:
+  --camera NAME         a named view: street, oblique, top, horizon (computed from the
+                        model's buildings and streets; see docs/demo-city.md)
+  --eye X,Y,Z --center X,Y,Z [--up X,Y,Z]
+                        an explicit look-at camera (up defaults to 0,0,1)
+                        (no camera option: frame the model's bounding sphere)
+  --size WxH            image size in pixels (default 1280x720)
+  --samples N           multisample anti-aliasing with N samples (default 0; at most
+                        GL_MAX_SAMPLES, which is 4 on llvmpipe)
+  --frames N            render N timed frames after one warm-up frame and report the
+                        median and minimum frame time (each frame ends with glFinish)
+  --out FILE.png        where to write the image (default out/render.png)
+  --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON
+  --city "K=V ..."      demo city parameters, e.g. "seed=7 blocksX=6 blocksY=4"
+                        (keys: see docs/demo-city.md); ignored with MODEL
+  --program plain       draw with the project's loa_plain GLSL program instead of OSG's
+                        fixed-function pipeline
+  --gl-info             print the GL context's capabilities and exit
+  --version             print the version and exit
+  --help                this text
+
+exit status: 0 done, 1 the model or an output could not be read or written or a shader
+failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
+)";
+
+struct Options
+{
+    std::string model, out = "out/render.png", stats, city, program;
+    loa::CameraChoice camera;
+    int width = 1280, height = 720, samples = 0;
+    unsigned frames = 0;
+    bool glInfo = false;
+};
+
+Options parse(int argc, char** argv)
+{
+    Options o;
+    loa::Args args(argc, argv);
+    while (!args.empty())
+    {
+        const std::string a = args.next();
+        if (a == "--help" || a == "-h")
+        {
+            std::cout << kHelp;
+            std::exit(loa::kOk);
+        }
+        else if (a == "--version")
+        {
+            std::cout << "loa-render " << osgLoAGetVersion() << "\n";
+            std::exit(loa::kOk);
+        }
+        else if (a == "--camera")
+        {
+            o.camera.name = args.value(a);
+            if (!osgLoA::CityCameras::isName(o.camera.name))
+                throw loa::UsageError("unknown camera '" + o.camera.name + "' (known: street, oblique, top, horizon)");
+        }
+        else if (a == "--eye")
+            o.camera.eye = loa::parseVec3(a, args.value(a)), o.camera.haveEye = true;
+        else if (a == "--center")
+            o.camera.center = loa::parseVec3(a, args.value(a)), o.camera.haveCenter = true;
+        else if (a == "--up")
+            o.camera.up = loa::parseVec3(a, args.value(a)), o.camera.haveUp = true;
+        else if (a == "--size")
+            loa::parseSize(args.value(a), o.width, o.height);
+        else if (a == "--samples")
+            o.samples = static_cast<int>(loa::parseCount(a, args.value(a), 64));
+        else if (a == "--frames")
+            o.frames = loa::parseCount(a, args.value(a), 100000);
+        else if (a == "--out")
+            o.out = args.value(a);
+        else if (a == "--stats")
+            o.stats = args.value(a);
+        else if (a == "--city")
+            o.city = args.value(a);
+        else if (a == "--program")
+        {
+            o.program = args.value(a);
+            if (o.program != "plain")
+                throw loa::UsageError("unknown --program '" + o.program + "' (known: plain)");
+        }
+        else if (a == "--gl-info")
+            o.glInfo = true;
+        else if (!a.empty() && a[0] == '-')
+            throw loa::UsageError("unknown option '" + a + "' (see --help)");
+        else if (o.model.empty())
+            o.model = a;
+        else
+            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+    }
+    if (o.camera.haveEye != o.camera.haveCenter)
+        throw loa::UsageError("--eye and --center go together");
+    if (o.camera.haveUp && !o.camera.haveEye)
+        throw loa::UsageError("--up needs --eye and --center");
+    if (!o.camera.name.empty() && o.camera.haveEye)
+        throw loa::UsageError("--camera and --eye/--center exclude each other");
+    if (osgDB::getLowerCaseFileExtension(o.out) != "png")
+        throw loa::UsageError("--out '" + o.out + "' must name a .png file");
+    return o;
+}
+
+int run(const Options& o)
+{
+    osgLoA::OffscreenRenderer::Settings settings;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.samples = o.samples;
+    osg::ref_ptr<osgLoA::OffscreenRenderer> renderer = new osgLoA::OffscreenRenderer(settings);
+    const osgLoA::GLCapabilities& caps = renderer->getCapabilities();
+    if (o.glInfo)
+    {
+        std::cout << "EGL:             " << renderer->getContext()->getEGLDescription() << " ("
+                  << renderer->getContext()->getPlatform() << " platform)\n"
+                  << caps.report() << "multisample-FBO fix applied: "
+                  << (renderer->getContext()->appliedMultisampleCoverageFix() ? "yes" : "no") << "\n";
+        return loa::kOk;
+    }
+
+    osg::ref_ptr<osg::Node> scene;
+    std::string what;
+    const auto g0 = std::chrono::steady_clock::now();
+    if (!o.model.empty())
+    {
+        scene = loa::loadModel(o.model);
+        what = "'" + o.model + "'";
+    }
+    else
+    {
+        osgLoA::CityParameters params;
+        try
+        {
+            params.parse(o.city);
+            params.validate();
+        }
+        catch (const std::invalid_argument& e)
+        {
+            throw loa::UsageError(std::string("--city: ") + e.what());
+        }
+        scene = osgLoA::CityGenerator(params).generate();
+        what = "the demo city (seed " + std::to_string(params.seed) + ", " + std::to_string(params.blocksX) + "x" +
+               std::to_string(params.blocksY) + " blocks)";
+    }
+    const double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
+    if (o.program == "plain")
+    {
+        osg::StateSet* ss = scene->getOrCreateStateSet();
+        ss->setAttributeAndModes(osgLoA::ShaderLibrary::createProgram(
+                                     "plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"})
+                                     .get());
+        ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    }
+    renderer->setSceneData(scene.get());
+    loa::applyCamera(*renderer, o.camera);
+
+    const osgLoA::SceneStatistics stats = osgLoA::SceneStatistics::collect(*scene);
+    osgLoA::FrameTimes times;
+    if (o.frames > 0)
+        times = renderer->timeFrames(o.frames);
+    osg::ref_ptr<osg::Image> image = renderer->renderImage();
+    osgLoA::ImageFile::write(o.out, *image);
+
+    const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
+    std::cout << "rendered " << what << ": " << stats.summary() << "\n"
+              << "view: " << o.camera.describe() << ", " << o.width << "x" << o.height
+              << (o.samples ? ", " + std::to_string(o.samples) + "x MSAA" : std::string())
+              << (o.program.empty() ? ", fixed-function pipeline" : ", program " + o.program) << "\n"
+              << "GL: " << caps.summary() << " via EGL " << renderer->getContext()->getPlatform() << "\n"
+              << "scene built/loaded in " << std::fixed << std::setprecision(1) << loadMs << " ms\n";
+    if (o.frames > 0)
+        std::cout << "frame time over " << o.frames << " frames (after 1 warm-up, glFinish each): median "
+                  << std::setprecision(2) << times.median() << " ms, min " << times.min() << " ms, max "
+                  << times.max() << " ms\n";
+    std::cout << "wrote " << o.out << "\n";
+
+    if (!o.stats.empty())
+    {
+        std::ostringstream j;
+        j << std::setprecision(6) << "{\n  \"tool\": \"loa-render\", \"version\": \"" << osgLoAGetVersion() << "\",\n"
+          << "  \"model\": \"" << loa::jsonEscape(o.model.empty() ? "demo-city" : o.model) << "\",\n"
+          << "  \"camera\": \"" << loa::jsonEscape(o.camera.describe()) << "\",\n"
+          << "  \"width\": " << o.width << ", \"height\": " << o.height << ", \"samples\": " << o.samples << ",\n"
+          << "  \"frames\": " << o.frames << ", \"median_ms\": " << times.median() << ", \"min_ms\": " << times.min()
+          << ", \"max_ms\": " << times.max() << ",\n  \"frame_ms\": [";
+        for (size_t i = 0; i < times.milliseconds.size(); ++i)
+            j << (i ? ", " : "") << times.milliseconds[i];
+        j << "],\n  \"scene\": " << stats.toJson() << ",\n  \"gl\": " << caps.toJson() << ",\n"
+          << "  \"machine\": {\"cpu\": \"" << loa::jsonEscape(machine.cpuModel) << "\", \"cores\": " << machine.cores
+          << ", \"memory_gib\": " << machine.memoryGiB << ", \"os\": \"" << loa::jsonEscape(machine.os) << "\"}\n}\n";
+        osgLoA::AtomicFile::writeText(o.stats, j.str());
+        std::cout << "wrote " << o.stats << "\n";
+    }
+    return loa::kOk;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+    try
+    {
+        return run(parse(argc, argv));
+    }
+    catch (const loa::UsageError& e)
+    {
+        std::cerr << "loa-render: error: " << e.what() << "\n";
+        return loa::kUsage;
+    }
+    catch (const osgLoA::HeadlessContextError& e)
+    {
+        std::cerr << "loa-render: error: " << e.what() << "\n";
+        return loa::kNoContext;
+    }
+    catch (const std::invalid_argument& e)
+    {
+        std::cerr << "loa-render: error: " << e.what() << "\n";
+        return loa::kUsage;
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "loa-render: error: " << e.what() << "\n";
+        return loa::kFailure;
+    }
+}
