@@ -1,1 +1,236 @@
-int main() { return 0; }
+// loa-bench: named benchmark cases; each writes CSV rows to docs/bench/<case>.csv.
+#include "../common/AppSupport.h"
+
+#include <osgLoA/Version>
+#include <osgLoA/city/CityGenerator>
+#include <osgLoA/render/OffscreenRenderer>
+#include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/util/AtomicFile>
+#include <osgLoA/util/ImageCompare>
+#include <osgLoA/util/MachineInfo>
+#include <osgLoA/util/SceneStatistics>
+
+#include <osg/Uniform>
+
+#include <algorithm>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace
+{
+const char* kHelp = R"(usage: loa-bench [--case NAME]... [--frames N] [--out-dir DIR] [--list]
+
+Runs benchmark cases headless and writes one CSV per case to DIR/<case>.csv (default
+docs/bench), with columns
+  case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine
+Frame times are per frame after one warm-up frame, each frame ended by glFinish. error_* is the
+case's accuracy measure (empty when the case has none). scripts/charts draws the charts.
+
+cases:
+  plain-render   the demo city from the 'oblique' camera at 800x600, 1280x720, 1920x1080:
+                 OSG's default fixed-function pipeline (the baseline every later case is a
+                 ratio against) and the project's loa_plain GLSL program
+  msaa           the demo city at 1280x720 with 0, 2 and 4 samples: frame time against the
+                 mean and max per-pixel error to a 4x-MSAA, 2x2-supersampled reference
+
+options:
+  --case NAME    run this case (repeatable; default: all)
+  --frames N     timed frames per configuration (default 10)
+  --out-dir DIR  where the CSVs go (default docs/bench)
+  --list         list the cases and exit
+)";
+
+struct Row
+{
+    std::string parameters;
+    osgLoA::FrameTimes times;
+    std::string errorMean, errorMax;
+};
+
+osg::ref_ptr<osg::Node> demoCity()
+{
+    static osg::ref_ptr<osg::Node> city = osgLoA::CityGenerator(osgLoA::CityParameters()).generate();
+    return city;
+}
+
+osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene)
+{
+    osgLoA::OffscreenRenderer::Settings s;
+    s.width = w;
+    s.height = h;
+    s.samples = samples;
+    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
+    r->setSceneData(scene);
+    loa::CameraChoice cam;
+    cam.name = "oblique";
+    loa::applyCamera(*r, cam);
+    return r;
+}
+
+std::vector<Row> plainRender(unsigned frames, std::string& renderer)
+{
+    std::vector<Row> rows;
+    osg::ref_ptr<osg::Node> city = demoCity();
+    // The shader variant wraps the same city so both share geometry and textures.
+    osg::ref_ptr<osg::Group> shaded = new osg::Group;
+    shaded->addChild(city.get());
+    shaded->getOrCreateStateSet()->setAttributeAndModes(
+        osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"}).get());
+    shaded->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    const int sizes[3][2] = {{800, 600}, {1280, 720}, {1920, 1080}};
+    for (const auto& sz : sizes)
+        for (int pipeline = 0; pipeline < 2; ++pipeline)
+        {
+            auto r = makeRenderer(sz[0], sz[1], 0, pipeline ? static_cast<osg::Node*>(shaded.get()) : city.get());
+            renderer = r->getCapabilities().renderer;
+            Row row;
+            row.parameters = std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
+                             (pipeline ? " pipeline=loa_plain" : " pipeline=fixed");
+            row.times = r->timeFrames(frames);
+            rows.push_back(row);
+            std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms\n";
+        }
+    return rows;
+}
+
+/** Box-filters an RGBA image by an integer factor. */
+osg::ref_ptr<osg::Image> downsample(const osg::Image& in, int f)
+{
+    osg::ref_ptr<osg::Image> out = new osg::Image;
+    const int w = in.s() / f, h = in.t() / f;
+    out->allocateImage(w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+            {
+                int sum = 0;
+                for (int j = 0; j < f; ++j)
+                    for (int i = 0; i < f; ++i)
+                        sum += in.data(x * f + i, y * f + j)[c];
+                out->data(x, y)[c] = static_cast<unsigned char>((sum + f * f / 2) / (f * f));
+            }
+    return out;
+}
+
+std::vector<Row> msaa(unsigned frames, std::string& renderer)
+{
+    std::vector<Row> rows;
+    osg::ref_ptr<osg::Node> city = demoCity();
+    const int w = 1280, h = 720;
+    auto ref = makeRenderer(2 * w, 2 * h, 4, city.get());
+    osg::ref_ptr<osg::Image> reference = downsample(*ref->renderImage(), 2);
+    for (int samples : {0, 2, 4})
+    {
+        auto r = makeRenderer(w, h, samples, city.get());
+        renderer = r->getCapabilities().renderer;
+        Row row;
+        row.parameters = "1280x720 samples=" + std::to_string(samples);
+        row.times = r->timeFrames(frames);
+        const auto cmp = osgLoA::ImageComparison::compare(*r->renderImage(), *reference, 8);
+        std::ostringstream m, x;
+        m << std::setprecision(4) << cmp.meanDifference;
+        x << cmp.maxDifference;
+        row.errorMean = m.str();
+        row.errorMax = x.str();
+        rows.push_back(row);
+        std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
+                  << row.errorMean << "/255\n";
+    }
+    return rows;
+}
+
+std::string csvQuote(const std::string& s)
+{
+    std::string q = "\"";
+    for (char c : s)
+        q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+    using CaseFn = std::function<std::vector<Row>(unsigned, std::string&)>;
+    const std::vector<std::pair<std::string, CaseFn>> cases = {{"plain-render", plainRender}, {"msaa", msaa}};
+    try
+    {
+        std::vector<std::string> chosen;
+        unsigned frames = 10;
+        std::string outDir = "docs/bench";
+        loa::Args args(argc, argv);
+        while (!args.empty())
+        {
+            const std::string a = args.next();
+            if (a == "--help" || a == "-h")
+            {
+                std::cout << kHelp;
+                return loa::kOk;
+            }
+            else if (a == "--list")
+            {
+                for (const auto& c : cases)
+                    std::cout << c.first << "\n";
+                return loa::kOk;
+            }
+            else if (a == "--case")
+            {
+                const std::string name = args.value(a);
+                bool known = false;
+                for (const auto& c : cases)
+                    known = known || c.first == name;
+                if (!known)
+                    throw loa::UsageError("unknown case '" + name + "' (see --list)");
+                chosen.push_back(name);
+            }
+            else if (a == "--frames")
+            {
+                frames = loa::parseCount(a, args.value(a), 10000);
+                if (frames == 0)
+                    throw loa::UsageError("--frames must be at least 1");
+            }
+            else if (a == "--out-dir")
+                outDir = args.value(a);
+            else
+                throw loa::UsageError("unknown argument '" + a + "' (see --help)");
+        }
+        const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
+        for (const auto& c : cases)
+        {
+            if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), c.first) == chosen.end())
+                continue;
+            std::cerr << "case " << c.first << " (" << frames << " frames per configuration)\n";
+            std::string renderer;
+            const std::vector<Row> rows = c.second(frames, renderer);
+            const std::string line = machine.line(renderer);
+            std::ostringstream csv;
+            csv << std::fixed << std::setprecision(3)
+                << "case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine\n";
+            for (const Row& r : rows)
+                csv << c.first << "," << csvQuote(r.parameters) << "," << r.times.milliseconds.size() << ","
+                    << r.times.median() << "," << r.times.min() << "," << r.times.max() << "," << r.errorMean << ","
+                    << r.errorMax << "," << csvQuote(line) << "\n";
+            const std::string path = outDir + "/" + c.first + ".csv";
+            osgLoA::AtomicFile::writeText(path, csv.str());
+            std::cout << "wrote " << path << " (" << rows.size() << " rows; " << line << ")\n";
+        }
+        return loa::kOk;
+    }
+    catch (const loa::UsageError& e)
+    {
+        std::cerr << "loa-bench: error: " << e.what() << "\n";
+        return loa::kUsage;
+    }
+    catch (const osgLoA::HeadlessContextError& e)
+    {
+        std::cerr << "loa-bench: error: " << e.what() << "\n";
+        return loa::kNoContext;
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "loa-bench: error: " << e.what() << "\n";
+        return loa::kFailure;
+    }
+}
