@@ -129,13 +129,44 @@ Options parse(int argc, char** argv)
 
 int run(const Options& o)
 {
+    // The scene first: a missing or malformed model is reported as such, with or without GL.
+    const bool glInfoOnly = o.glInfo;
+    osg::ref_ptr<osg::Node> scene;
+    std::string what;
+    double loadMs = 0.0;
+    if (!glInfoOnly)
+    {
+        const auto g0 = std::chrono::steady_clock::now();
+        if (!o.model.empty())
+        {
+            scene = loa::loadModel(o.model);
+            what = "'" + o.model + "'";
+        }
+        else
+        {
+            osgLoA::CityParameters params;
+            try
+            {
+                params.parse(o.city);
+                params.validate();
+            }
+            catch (const std::invalid_argument& e)
+            {
+                throw loa::UsageError(std::string("--city: ") + e.what());
+            }
+            scene = osgLoA::CityGenerator(params).generate();
+            what = "the demo city (seed " + std::to_string(params.seed) + ", " + std::to_string(params.blocksX) + "x" +
+                   std::to_string(params.blocksY) + " blocks)";
+        }
+        loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
+}
     osgLoA::OffscreenRenderer::Settings settings;
     settings.width = o.width;
     settings.height = o.height;
     settings.samples = o.samples;
     osg::ref_ptr<osgLoA::OffscreenRenderer> renderer = new osgLoA::OffscreenRenderer(settings);
     const osgLoA::GLCapabilities& caps = renderer->getCapabilities();
-    if (o.glInfo)
+    if (glInfoOnly)
     {
         std::cout << "EGL:             " << renderer->getContext()->getEGLDescription() << " ("
                   << renderer->getContext()->getPlatform() << " platform)\n"
@@ -144,31 +175,6 @@ int run(const Options& o)
         return loa::kOk;
     }
 
-    osg::ref_ptr<osg::Node> scene;
-    std::string what;
-    const auto g0 = std::chrono::steady_clock::now();
-    if (!o.model.empty())
-    {
-        scene = loa::loadModel(o.model);
-        what = "'" + o.model + "'";
-    }
-    else
-    {
-        osgLoA::CityParameters params;
-        try
-        {
-            params.parse(o.city);
-            params.validate();
-        }
-        catch (const std::invalid_argument& e)
-        {
-            throw loa::UsageError(std::string("--city: ") + e.what());
-        }
-        scene = osgLoA::CityGenerator(params).generate();
-        what = "the demo city (seed " + std::to_string(params.seed) + ", " + std::to_string(params.blocksX) + "x" +
-               std::to_string(params.blocksY) + " blocks)";
-    }
-    const double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
     if (o.program == "plain")
     {
         osg::StateSet* ss = scene->getOrCreateStateSet();

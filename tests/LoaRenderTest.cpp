@@ -1,0 +1,81 @@
+// loa-render's error paths: one clear line on stderr and the documented exit status.
+// None of these reaches a GL context, so the test needs no GL.
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+namespace
+{
+struct Case
+{
+    const char* args;
+    int status;
+    const char* message;
+};
+
+std::string exe() { return std::string("'") + LOA_RENDER_EXE + "'"; }
+} // namespace
+
+TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
+{
+    const std::string dir = loatest::freshDirectory("LoaRenderTest");
+    std::ofstream(dir + "/garbage.osgb") << "this is not an osgb file";
+    std::ofstream(dir + "/model.xyz123") << "unknown format";
+    const Case cases[] = {
+        {"/nonexistent/city.osgb", 1, "cannot read '/nonexistent/city.osgb': no such file"},
+        {"GARBAGE", 1, "cannot read"},
+        {"XYZ", 1, "no osgDB plugin reads '.xyz123' files"},
+        {"--size 12x", 2, "--size '12x' is not WIDTHxHEIGHT"},
+        {"--size 0x100", 2, "is outside 1x1 .. 16384x16384"},
+        {"--size 99999x10", 2, "is outside"},
+        {"--size abc", 2, "is not WIDTHxHEIGHT"},
+        {"--camera balloon", 2, "unknown camera 'balloon'"},
+        {"--eye 1,2", 2, "--eye '1,2' is not X,Y,Z"},
+        {"--eye 1,2,3", 2, "--eye and --center go together"},
+        {"--frames -3", 2, "--frames '-3' is not an integer"},
+        {"--out x.jpg", 2, "must name a .png file"},
+        {"--bogus", 2, "unknown option '--bogus'"},
+        {"--size", 2, "--size needs a value"},
+        {"--city blocksX=0", 2, "blocksX must be in 1..200"},
+        {"a.osgb b.osgb", 2, "more than one model"},
+        {"--program toon", 2, "unknown --program 'toon'"},
+    };
+    for (const Case& c : cases)
+    {
+        std::string args = c.args;
+        if (args == "GARBAGE")
+            args = "'" + dir + "/garbage.osgb'";
+        if (args == "XYZ")
+            args = "'" + dir + "/model.xyz123'";
+        std::string out;
+        const int status = loatest::run(exe() + " --out '" + dir + "/x.png' " + args, out);
+        EXPECT_EQ(status, c.status) << c.args << "\n" << out;
+        EXPECT_EQ(out.rfind("loa-render: error: ", 0), 0u) << c.args << " printed:\n" << out;
+        EXPECT_NE(out.find(c.message), std::string::npos) << c.args << " printed:\n" << out;
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << c.args << " printed:\n" << out;
+        EXPECT_EQ(out.find("Segmentation"), std::string::npos);
+    }
+}
+
+TEST(LoaRenderTest, HelpDocumentsEveryOption)
+{
+    std::string out;
+    ASSERT_EQ(loatest::run(exe() + " --help", out), 0);
+    for (const char* opt : {"--camera", "--eye", "--center", "--up", "--size", "--frames", "--out", "--stats",
+                            "--samples", "street", "oblique", "top", "horizon"})
+        EXPECT_NE(out.find(opt), std::string::npos) << opt;
+}
+
+TEST(LoaRenderTest, NoUsableEglIsOneSentenceAndStatus3)
+{
+    // GLVND finds no EGL vendor library: EGL is installed but unusable.
+    std::string out;
+    const int status =
+        loatest::run("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json " + exe() + " --gl-info", out);
+    EXPECT_EQ(status, 3) << out;
+    EXPECT_NE(out.find("loa-render: error: No usable EGL display"), std::string::npos) << out;
+    EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+}

@@ -1,0 +1,82 @@
+#include "TestSupport.h"
+
+#include <osgLoA/util/ImageFile>
+
+#include <osgDB/FileUtils>
+#include <osgDB/Registry>
+#include <osgDB/WriteFile>
+
+#include <fstream>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace loatest
+{
+
+std::string freshDirectory(const std::string& name)
+{
+    const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/" + name;
+    std::string out;
+    run("rm -rf '" + dir + "' && mkdir -p '" + dir + "'", out);
+    return dir;
+}
+
+int run(const std::string& command, std::string& output)
+{
+    output.clear();
+    FILE* p = popen((command + " 2>&1").c_str(), "r");
+    if (!p)
+        return -1;
+    std::array<char, 4096> buf{};
+    size_t n = 0;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
+        output.append(buf.data(), n);
+    const int status = pclose(p);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string toOsgt(const osg::Node& node)
+{
+    // Through a real .osgt file: the text format exactly as users get it.
+    static int counter = 0;
+    const std::string dir = std::string(LOA_TEST_OUTPUT_DIR);
+    osgDB::makeDirectory(dir);
+    const std::string path = dir + "/toOsgt-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".osgt";
+    osg::ref_ptr<osgDB::Options> opts = new osgDB::Options("WriteImageHint=IncludeData");
+    if (!osgDB::writeNodeFile(node, path, opts.get()))
+        return std::string();
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    std::remove(path.c_str());
+    return text.str();
+}
+
+osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Image& actual)
+{
+    const std::string path = std::string(LOA_SOURCE_DIR) + "/tests/data/golden/" + name;
+    const char* update = std::getenv("LOA_UPDATE_GOLDENS");
+    if (update && std::string(update) == "1")
+    {
+        osgLoA::ImageFile::write(path, actual);
+        return nullptr;
+    }
+    return osgLoA::ImageFile::read(path);
+}
+
+void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference)
+{
+    const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/failures";
+    osgDB::makeDirectory(dir);
+    osgLoA::ImageFile::write(dir + "/" + name + "-actual.png", actual);
+    if (difference)
+        osgLoA::ImageFile::write(dir + "/" + name + "-diff.png", *difference);
+    std::fprintf(stderr, "saved %s/%s-actual.png and -diff.png\n", dir.c_str(), name.c_str());
+}
+
+} // namespace loatest

@@ -1,0 +1,31 @@
+// Helpers shared by the tests.
+#ifndef OSGLOA_TESTS_TESTSUPPORT_H
+#define OSGLOA_TESTS_TESTSUPPORT_H 1
+
+#include <osg/Image>
+#include <osg/Node>
+
+#include <string>
+
+namespace loatest
+{
+
+/** A fresh empty directory under the build's test-output folder. */
+std::string freshDirectory(const std::string& name);
+
+/** Runs a shell command; returns its exit status and fills stdout+stderr. */
+int run(const std::string& command, std::string& output);
+
+/** The node written to .osgt text (the whole graph, user values included). */
+std::string toOsgt(const osg::Node& node);
+
+/** Reads the golden PNG tests/data/golden/NAME; when LOA_UPDATE_GOLDENS=1 writes actual
+ *  there instead (scripts/update-goldens) and returns null. */
+osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Image& actual);
+
+/** Writes NAME-actual.png and NAME-diff.png beside the build for a failed comparison. */
+void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference);
+
+} // namespace loatest
+
+#endif
