@@ -32,14 +32,16 @@ TEST(AtomicFileTest, WritesReplaceAndFailuresLeaveTheOldFile)
     AtomicFile::writeText(path, "two");
     EXPECT_EQ(slurp(path), "two");
     EXPECT_THROW(AtomicFile::write(path,
-                                   [](const std::string& temp) {
+                                   [](const std::string& temp)
+                                   {
                                        std::ofstream(temp) << "partial";
                                        return false;
                                    }),
                  std::runtime_error);
     EXPECT_EQ(slurp(path), "two");
-    EXPECT_THROW(AtomicFile::write(path, [](const std::string&) -> bool { throw std::runtime_error("boom"); }),
-                 std::runtime_error);
+    EXPECT_THROW(
+        AtomicFile::write(path, [](const std::string&) -> bool { throw std::runtime_error("boom"); }),
+        std::runtime_error);
     EXPECT_EQ(slurp(path), "two");
     // Only a.txt is left in the directory: the temporaries are gone.
     int entries = 0;

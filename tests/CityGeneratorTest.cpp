@@ -23,8 +23,7 @@ struct Features : osg::NodeVisitor
     void apply(osg::Node& n) override
     {
         FeatureTag t;
-        if (FeatureTag::read(n, t))
-            tags.push_back(t);
+        if (FeatureTag::read(n, t)) tags.push_back(t);
         traverse(n);
     }
     std::vector<FeatureTag> tags;

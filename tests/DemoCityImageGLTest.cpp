@@ -33,8 +33,7 @@ void compareWithGolden(const std::string& camera)
     const std::string name = "demo-city-" + camera + "-320x240";
     osg::ref_ptr<osg::Image> actual = renderDemoCity(camera);
     osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate(name + ".png", *actual);
-    if (!golden)
-        GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
+    if (!golden) GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
     // A channel may differ by up to 16/255 before its pixel counts as failing: llvmpipe builds
     // with other LLVM versions or vector widths round texture filtering and blending by a few
     // units, which is not a change of what is drawn.
@@ -46,15 +45,20 @@ void compareWithGolden(const std::string& camera)
                     // texel flips at geometry edges, where rasterization rules may differ.
                     cmp.failingFraction <= 0.005;
     // No bound on the maximum: one flipped edge pixel legitimately differs by up to 255.
-    if (!ok)
-        loatest::saveFailure(name, *actual, cmp.difference.get());
+    if (!ok) loatest::saveFailure(name, *actual, cmp.difference.get());
     EXPECT_TRUE(ok) << name << ": " << cmp.summary();
 }
 } // namespace
 
-TEST(DemoCityImageGLTest, ObliqueMatchesGolden) { compareWithGolden("oblique"); }
+TEST(DemoCityImageGLTest, ObliqueMatchesGolden)
+{
+    compareWithGolden("oblique");
+}
 
-TEST(DemoCityImageGLTest, StreetMatchesGolden) { compareWithGolden("street"); }
+TEST(DemoCityImageGLTest, StreetMatchesGolden)
+{
+    compareWithGolden("street");
+}
 
 TEST(DemoCityImageGLTest, RenderingIsDeterministicWithinOneMachine)
 {

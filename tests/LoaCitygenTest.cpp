@@ -10,7 +10,10 @@
 
 namespace
 {
-std::string exe() { return std::string("'") + LOA_CITYGEN_EXE + "'"; }
+std::string exe()
+{
+    return std::string("'") + LOA_CITYGEN_EXE + "'";
+}
 } // namespace
 
 TEST(LoaCitygenTest, WritesOsgtOsgbAndObjThatReadBack)
@@ -27,7 +30,8 @@ TEST(LoaCitygenTest, WritesOsgtOsgbAndObjThatReadBack)
     EXPECT_TRUE(osgDB::fileExists(dir + "/obj/c.mtl"));
     EXPECT_TRUE(osgDB::fileExists(dir + "/obj/loa_facade-brick.png"));
     // Native formats keep the feature tags; the text and binary files describe the same city.
-    osg::ref_ptr<osg::Node> t = osgDB::readRefNodeFile(dir + "/c.osgt"), b = osgDB::readRefNodeFile(dir + "/c.osgb");
+    osg::ref_ptr<osg::Node> t = osgDB::readRefNodeFile(dir + "/c.osgt"),
+                            b = osgDB::readRefNodeFile(dir + "/c.osgb");
     EXPECT_EQ(loatest::toOsgt(*t), loatest::toOsgt(*b));
     EXPECT_GT(osgLoA::SceneStatistics::collect(*t).features, 10u);
 }

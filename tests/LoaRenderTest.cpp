@@ -16,7 +16,10 @@ struct Case
     const char* message;
 };
 
-std::string exe() { return std::string("'") + LOA_RENDER_EXE + "'"; }
+std::string exe()
+{
+    return std::string("'") + LOA_RENDER_EXE + "'";
+}
 } // namespace
 
 TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
@@ -46,10 +49,8 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
     for (const Case& c : cases)
     {
         std::string args = c.args;
-        if (args == "GARBAGE")
-            args = "'" + dir + "/garbage.osgb'";
-        if (args == "XYZ")
-            args = "'" + dir + "/model.xyz123'";
+        if (args == "GARBAGE") args = "'" + dir + "/garbage.osgb'";
+        if (args == "XYZ") args = "'" + dir + "/model.xyz123'";
         std::string out;
         const int status = loatest::run(exe() + " --out '" + dir + "/x.png' " + args, out);
         EXPECT_EQ(status, c.status) << c.args << "\n" << out;

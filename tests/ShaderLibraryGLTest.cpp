@@ -18,12 +18,6 @@ using namespace osgLoA;
 
 namespace
 {
-void setFilePath(const std::string& value)
-{
-    ::setenv("OSG_FILE_PATH", value.c_str(), 1);
-    osgDB::Registry::instance()->getDataFilePathList().clear();
-    osgDB::Registry::instance()->initDataFilePathList();
-}
 
 osg::ref_ptr<osg::Node> quadWithPlainProgram()
 {
@@ -62,7 +56,7 @@ osg::ref_ptr<OffscreenRenderer> renderer()
 
 TEST(ShaderLibraryGLTest, TheEmbeddedPlainProgramLinksAndShades)
 {
-    setFilePath("");
+    loatest::setFilePath("");
     auto r = renderer();
     r->setSceneData(quadWithPlainProgram().get());
     osg::ref_ptr<osg::Image> img = r->renderImage();
@@ -76,11 +70,12 @@ TEST(ShaderLibraryGLTest, TheEmbeddedPlainProgramLinksAndShades)
 TEST(ShaderLibraryGLTest, ACompileErrorNamesShaderStageAndLogAndStopsTheRender)
 {
     const std::string dir = loatest::freshDirectory("ShaderCompileError");
-    std::ofstream(dir + "/loa_plain.frag.glsl") << "#version 450 compatibility\nvoid main() { this is not glsl; }\n";
-    setFilePath(dir);
+    std::ofstream(dir + "/loa_plain.frag.glsl")
+        << "#version 450 compatibility\nvoid main() { this is not glsl; }\n";
+    loatest::setFilePath(dir);
     auto r = renderer();
     r->setSceneData(quadWithPlainProgram().get());
-    setFilePath("");
+    loatest::setFilePath("");
     try
     {
         r->renderImage();
@@ -105,11 +100,12 @@ TEST(ShaderLibraryGLTest, ALinkErrorIsReportedAsSuch)
     // Both stages compile, but the fragment stage reads an input no stage writes.
     const std::string dir = loatest::freshDirectory("ShaderLinkError");
     std::ofstream(dir + "/loa_plain.frag.glsl")
-        << "#version 450 compatibility\nin vec4 loa_neverWritten;\nout vec4 c;\nvoid main() { c = loa_neverWritten; }\n";
-    setFilePath(dir);
+        << "#version 450 compatibility\nin vec4 loa_neverWritten;\nout vec4 c;\nvoid main() { c = "
+           "loa_neverWritten; }\n";
+    loatest::setFilePath(dir);
     auto r = renderer();
     r->setSceneData(quadWithPlainProgram().get());
-    setFilePath("");
+    loatest::setFilePath("");
     try
     {
         r->renderImage();

@@ -13,23 +13,13 @@
 
 using namespace osgLoA;
 
-namespace
-{
-void setFilePath(const std::string& value)
-{
-    ::setenv("OSG_FILE_PATH", value.c_str(), 1);
-    osgDB::Registry::instance()->getDataFilePathList().clear();
-    osgDB::Registry::instance()->initDataFilePathList();
-}
-} // namespace
-
 TEST(ShaderLibraryTest, EverySourceOfShadersIsEmbeddedWithAVersionLine)
 {
     const auto names = ShaderLibrary::embeddedNames();
     ASSERT_FALSE(names.empty());
     EXPECT_NE(std::find(names.begin(), names.end(), "loa_plain.vert.glsl"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "loa_plain.frag.glsl"), names.end());
-    setFilePath("");
+    loatest::setFilePath("");
     for (const auto& n : names)
     {
         const auto src = ShaderLibrary::getSource(n);
@@ -45,7 +35,7 @@ TEST(ShaderLibraryTest, AFileOnOsgFilePathOverridesTheEmbeddedSource)
         std::ofstream out(dir + "/loa_plain.frag.glsl");
         out << "#version 450 compatibility\n// OVERRIDDEN\nvoid main() { gl_FragColor = vec4(1); }\n";
     }
-    setFilePath("/nonexistent:" + dir);
+    loatest::setFilePath("/nonexistent:" + dir);
     const auto src = ShaderLibrary::getSource("loa_plain.frag.glsl");
     EXPECT_EQ(src.origin, dir + "/loa_plain.frag.glsl");
     EXPECT_NE(src.text.find("OVERRIDDEN"), std::string::npos);
@@ -55,7 +45,7 @@ TEST(ShaderLibraryTest, AFileOnOsgFilePathOverridesTheEmbeddedSource)
     auto shader = ShaderLibrary::createShader("loa_plain.frag.glsl");
     EXPECT_NE(shader->getShaderSource().find("OVERRIDDEN"), std::string::npos);
     EXPECT_EQ(shader->getName(), "loa_plain.frag.glsl");
-    setFilePath("");
+    loatest::setFilePath("");
     EXPECT_EQ(ShaderLibrary::getSource("loa_plain.frag.glsl").origin, "embedded");
 }
 
@@ -66,7 +56,7 @@ TEST(ShaderLibraryTest, TheWorkingDirectoryDoesNotOverride)
         std::ofstream out(dir + "/loa_plain.vert.glsl");
         out << "#version 450\n// STRAY\n";
     }
-    setFilePath("");
+    loatest::setFilePath("");
     char old[4096];
     ASSERT_NE(::getcwd(old, sizeof old), nullptr);
     ASSERT_EQ(::chdir(dir.c_str()), 0);
@@ -89,8 +79,9 @@ TEST(ShaderLibraryTest, StagesComeFromTheName)
 TEST(ShaderLibraryTest, DiagnosticsNameShaderStageAndProgram)
 {
     ShaderDiagnostic d{"plain", "loa_plain.frag.glsl", "fragment", "0:3(1): error: syntax error\n"};
-    EXPECT_EQ(d.message(), "shader 'loa_plain.frag.glsl' (fragment stage) of program 'plain' failed to compile: "
-                           "0:3(1): error: syntax error");
+    EXPECT_EQ(d.message(),
+              "shader 'loa_plain.frag.glsl' (fragment stage) of program 'plain' failed to compile: "
+              "0:3(1): error: syntax error");
     ShaderDiagnostic l{"plain", "(link)", "link", ""};
     EXPECT_EQ(l.message(), "program 'plain' failed to link: (the driver gave no log)");
 }

@@ -8,10 +8,39 @@
 #include <osgDB/Registry>
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 namespace loa
 {
+
+int runTool(const char* tool, const std::function<int()>& body)
+{
+    try
+    {
+        return body();
+    }
+    catch (const UsageError& e)
+    {
+        std::cerr << tool << ": error: " << e.what() << "\n";
+        return kUsage;
+    }
+    catch (const osgLoA::HeadlessContextError& e)
+    {
+        std::cerr << tool << ": error: " << e.what() << "\n";
+        return kNoContext;
+    }
+    catch (const std::invalid_argument& e)
+    {
+        std::cerr << tool << ": error: " << e.what() << "\n";
+        return kUsage;
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << tool << ": error: " << e.what() << "\n";
+        return kFailure;
+    }
+}
 
 Args::Args(int argc, char** argv)
 {
@@ -28,8 +57,7 @@ std::string Args::next()
 
 std::string Args::value(const std::string& option)
 {
-    if (_words.empty())
-        throw UsageError(option + " needs a value");
+    if (_words.empty()) throw UsageError(option + " needs a value");
     return next();
 }
 
@@ -40,13 +68,11 @@ void parseSize(const std::string& text, int& width, int& height)
     long w = 0, h = 0;
     try
     {
-        if (x == std::string::npos)
-            throw std::invalid_argument("no x");
+        if (x == std::string::npos) throw std::invalid_argument("no x");
         const std::string a = text.substr(0, x), b = text.substr(x + 1);
         w = std::stol(a, &u1);
         h = std::stol(b, &u2);
-        if (u1 != a.size() || u2 != b.size())
-            throw std::invalid_argument("trailing");
+        if (u1 != a.size() || u2 != b.size()) throw std::invalid_argument("trailing");
     }
     catch (const std::exception&)
     {
@@ -62,8 +88,7 @@ osg::Vec3d parseVec3(const std::string& option, const std::string& text)
 {
     std::string s = text;
     for (char& c : s)
-        if (c == ',')
-            c = ' ';
+        if (c == ',') c = ' ';
     std::istringstream in(s);
     double v[3];
     std::string rest;
@@ -92,8 +117,7 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 
 osg::ref_ptr<osg::Node> loadModel(const std::string& path)
 {
-    if (!osgDB::fileExists(path))
-        throw std::runtime_error("cannot read '" + path + "': no such file");
+    if (!osgDB::fileExists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
     if (osgDB::fileType(path) == osgDB::DIRECTORY)
         throw std::runtime_error("cannot read '" + path + "': it is a directory");
     const std::string ext = osgDB::getLowerCaseFileExtension(path);
@@ -119,8 +143,8 @@ std::string CameraChoice::describe() const
     if (!name.empty())
         o << "camera '" << name << "'";
     else if (haveEye)
-        o << "eye " << eye.x() << "," << eye.y() << "," << eye.z() << " centre " << center.x() << "," << center.y()
-          << "," << center.z();
+        o << "eye " << eye.x() << "," << eye.y() << "," << eye.z() << " centre " << center.x() << ","
+          << center.y() << "," << center.z();
     else
         o << "framing the bounding sphere";
     return o.str();
@@ -132,35 +156,20 @@ void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice
     const double aspect = static_cast<double>(s.width) / s.height;
     if (!choice.name.empty())
     {
-        const osgLoA::CameraPose pose = osgLoA::CityCameras::compute(choice.name, *renderer.getSceneData(), aspect);
+        const osgLoA::CameraPose pose =
+            osgLoA::CityCameras::compute(choice.name, *renderer.getSceneData(), aspect);
         renderer.setPerspective(pose.fovy);
         renderer.setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
     }
     else if (choice.haveEye)
     {
-        if ((choice.center - choice.eye).length2() == 0.0)
-            throw UsageError("--eye and --center must differ");
+        if ((choice.center - choice.eye).length2() == 0.0) throw UsageError("--eye and --center must differ");
         if (((choice.center - choice.eye) ^ choice.up).length2() == 0.0)
             throw UsageError("--up must not be parallel to the view direction");
         renderer.setViewMatrixAsLookAt(choice.eye, choice.center, choice.up);
     }
     else
         renderer.frameScene();
-}
-
-std::string jsonEscape(const std::string& s)
-{
-    std::string out;
-    for (char c : s)
-    {
-        if (c == '"' || c == '\\')
-            out += '\\', out += c;
-        else if (static_cast<unsigned char>(c) < 0x20)
-            out += ' ';
-        else
-            out += c;
-    }
-    return out;
 }
 
 } // namespace loa

@@ -8,6 +8,7 @@
 #include <osg/Node>
 #include <osg/Vec3d>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,10 +26,15 @@ struct UsageError : std::runtime_error
 enum ExitCode
 {
     kOk = 0,
-    kFailure = 1,    ///< the work itself failed (unreadable model, write error, shader error)
-    kUsage = 2,      ///< bad arguments
-    kNoContext = 3,  ///< no usable EGL / OpenGL
+    kFailure = 1,   ///< the work itself failed (unreadable model, write error, shader error)
+    kUsage = 2,     ///< bad arguments
+    kNoContext = 3, ///< no usable EGL / OpenGL
 };
+
+/** Runs a tool's body and maps exceptions to one line "<tool>: error: <what>" on stderr and
+ *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,
+ *  anything else 1. */
+int runTool(const char* tool, const std::function<int()>& body);
 
 /** argv as a queue of words with strict option parsing. */
 class Args
@@ -65,8 +71,6 @@ struct CameraChoice
     std::string describe() const;
 };
 void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice);
-
-std::string jsonEscape(const std::string& s);
 
 } // namespace loa
 

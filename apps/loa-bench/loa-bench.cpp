@@ -84,7 +84,8 @@ std::vector<Row> plainRender(unsigned frames, std::string& renderer)
     for (const auto& sz : sizes)
         for (int pipeline = 0; pipeline < 2; ++pipeline)
         {
-            auto r = makeRenderer(sz[0], sz[1], 0, pipeline ? static_cast<osg::Node*>(shaded.get()) : city.get());
+            auto r =
+                makeRenderer(sz[0], sz[1], 0, pipeline ? static_cast<osg::Node*>(shaded.get()) : city.get());
             renderer = r->getCapabilities().renderer;
             Row row;
             row.parameters = std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
@@ -155,82 +156,67 @@ int main(int argc, char** argv)
 {
     using CaseFn = std::function<std::vector<Row>(unsigned, std::string&)>;
     const std::vector<std::pair<std::string, CaseFn>> cases = {{"plain-render", plainRender}, {"msaa", msaa}};
-    try
-    {
-        std::vector<std::string> chosen;
-        unsigned frames = 10;
-        std::string outDir = "docs/bench";
-        loa::Args args(argc, argv);
-        while (!args.empty())
+    return loa::runTool(
+        "loa-bench",
+        [&]() -> int
         {
-            const std::string a = args.next();
-            if (a == "--help" || a == "-h")
+            std::vector<std::string> chosen;
+            unsigned frames = 10;
+            std::string outDir = "docs/bench";
+            loa::Args args(argc, argv);
+            while (!args.empty())
             {
-                std::cout << kHelp;
-                return loa::kOk;
+                const std::string a = args.next();
+                if (a == "--help" || a == "-h")
+                {
+                    std::cout << kHelp;
+                    return loa::kOk;
+                }
+                else if (a == "--list")
+                {
+                    for (const auto& c : cases)
+                        std::cout << c.first << "\n";
+                    return loa::kOk;
+                }
+                else if (a == "--case")
+                {
+                    const std::string name = args.value(a);
+                    bool known = false;
+                    for (const auto& c : cases)
+                        known = known || c.first == name;
+                    if (!known) throw loa::UsageError("unknown case '" + name + "' (see --list)");
+                    chosen.push_back(name);
+                }
+                else if (a == "--frames")
+                {
+                    frames = loa::parseCount(a, args.value(a), 10000);
+                    if (frames == 0) throw loa::UsageError("--frames must be at least 1");
+                }
+                else if (a == "--out-dir")
+                    outDir = args.value(a);
+                else
+                    throw loa::UsageError("unknown argument '" + a + "' (see --help)");
             }
-            else if (a == "--list")
+            const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
+            for (const auto& c : cases)
             {
-                for (const auto& c : cases)
-                    std::cout << c.first << "\n";
-                return loa::kOk;
+                if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), c.first) == chosen.end())
+                    continue;
+                std::cerr << "case " << c.first << " (" << frames << " frames per configuration)\n";
+                std::string renderer;
+                const std::vector<Row> rows = c.second(frames, renderer);
+                const std::string line = machine.line(renderer);
+                std::ostringstream csv;
+                csv << std::fixed << std::setprecision(3)
+                    << "case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine\n";
+                for (const Row& r : rows)
+                    csv << c.first << "," << csvQuote(r.parameters) << "," << r.times.milliseconds.size()
+                        << "," << r.times.median() << "," << r.times.min() << "," << r.times.max() << ","
+                        << r.errorMean << "," << r.errorMax << "," << csvQuote(line) << "\n";
+                const std::string path = outDir + "/" + c.first + ".csv";
+                osgLoA::AtomicFile::writeText(path, csv.str());
+                std::cout << "wrote " << path << " (" << rows.size() << " rows; " << line << ")\n";
             }
-            else if (a == "--case")
-            {
-                const std::string name = args.value(a);
-                bool known = false;
-                for (const auto& c : cases)
-                    known = known || c.first == name;
-                if (!known)
-                    throw loa::UsageError("unknown case '" + name + "' (see --list)");
-                chosen.push_back(name);
-            }
-            else if (a == "--frames")
-            {
-                frames = loa::parseCount(a, args.value(a), 10000);
-                if (frames == 0)
-                    throw loa::UsageError("--frames must be at least 1");
-            }
-            else if (a == "--out-dir")
-                outDir = args.value(a);
-            else
-                throw loa::UsageError("unknown argument '" + a + "' (see --help)");
-        }
-        const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
-        for (const auto& c : cases)
-        {
-            if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), c.first) == chosen.end())
-                continue;
-            std::cerr << "case " << c.first << " (" << frames << " frames per configuration)\n";
-            std::string renderer;
-            const std::vector<Row> rows = c.second(frames, renderer);
-            const std::string line = machine.line(renderer);
-            std::ostringstream csv;
-            csv << std::fixed << std::setprecision(3)
-                << "case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine\n";
-            for (const Row& r : rows)
-                csv << c.first << "," << csvQuote(r.parameters) << "," << r.times.milliseconds.size() << ","
-                    << r.times.median() << "," << r.times.min() << "," << r.times.max() << "," << r.errorMean << ","
-                    << r.errorMax << "," << csvQuote(line) << "\n";
-            const std::string path = outDir + "/" + c.first + ".csv";
-            osgLoA::AtomicFile::writeText(path, csv.str());
-            std::cout << "wrote " << path << " (" << rows.size() << " rows; " << line << ")\n";
-        }
-        return loa::kOk;
-    }
-    catch (const loa::UsageError& e)
-    {
-        std::cerr << "loa-bench: error: " << e.what() << "\n";
-        return loa::kUsage;
-    }
-    catch (const osgLoA::HeadlessContextError& e)
-    {
-        std::cerr << "loa-bench: error: " << e.what() << "\n";
-        return loa::kNoContext;
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "loa-bench: error: " << e.what() << "\n";
-        return loa::kFailure;
-    }
+            return loa::kOk;
+        });
 }

@@ -47,13 +47,12 @@ public:
     void apply(osg::Drawable& d) override { add(d.getStateSet()); }
     void add(osg::StateSet* ss)
     {
-        if (!ss)
-            return;
+        if (!ss) return;
         for (unsigned u = 0; u < ss->getTextureAttributeList().size(); ++u)
-            if (auto* t = dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE)))
+            if (auto* t =
+                    dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE)))
                 for (unsigned i = 0; i < t->getNumImages(); ++i)
-                    if (t->getImage(i))
-                        images.insert(t->getImage(i));
+                    if (t->getImage(i)) images.insert(t->getImage(i));
     }
     std::set<osg::Image*> images;
 };
@@ -61,77 +60,72 @@ public:
 
 int main(int argc, char** argv)
 {
-    try
-    {
-        std::string output, city;
-        bool small = false;
-        loa::Args args(argc, argv);
-        while (!args.empty())
+    return loa::runTool(
+        "loa-citygen",
+        [&]() -> int
         {
-            const std::string a = args.next();
-            if (a == "--help" || a == "-h")
+            std::string output, city;
+            bool small = false;
+            loa::Args args(argc, argv);
+            while (!args.empty())
             {
-                std::cout << kHelp;
-                return loa::kOk;
+                const std::string a = args.next();
+                if (a == "--help" || a == "-h")
+                {
+                    std::cout << kHelp;
+                    return loa::kOk;
+                }
+                else if (a == "--city")
+                    city += " " + args.value(a);
+                else if (a == "--seed")
+                    city += " seed=" + std::to_string(loa::parseCount(a, args.value(a), 4294967295u));
+                else if (a == "--small")
+                    small = true;
+                else if (!a.empty() && a[0] == '-')
+                    throw loa::UsageError("unknown option '" + a + "' (see --help)");
+                else if (output.empty())
+                    output = a;
+                else
+                    throw loa::UsageError("more than one output given");
             }
-            else if (a == "--city")
-                city += " " + args.value(a);
-            else if (a == "--seed")
-                city += " seed=" + std::to_string(loa::parseCount(a, args.value(a), 4294967295u));
-            else if (a == "--small")
-                small = true;
-            else if (!a.empty() && a[0] == '-')
-                throw loa::UsageError("unknown option '" + a + "' (see --help)");
-            else if (output.empty())
-                output = a;
-            else
-                throw loa::UsageError("more than one output given");
-        }
-        if (output.empty())
-            throw loa::UsageError("no OUTPUT file given (see --help)");
-        const std::string ext = osgDB::getLowerCaseFileExtension(output);
-        osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
-        if (!rw || !(rw->supportedFeatures() & osgDB::ReaderWriter::FEATURE_WRITE_NODE))
-            throw loa::UsageError("no osgDB plugin writes '." + ext + "' scene files");
+            if (output.empty()) throw loa::UsageError("no OUTPUT file given (see --help)");
+            const std::string ext = osgDB::getLowerCaseFileExtension(output);
+            osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
+            if (!rw || !(rw->supportedFeatures() & osgDB::ReaderWriter::FEATURE_WRITE_NODE))
+                throw loa::UsageError("no osgDB plugin writes '." + ext + "' scene files");
 
-        osgLoA::CityParameters params = small ? osgLoA::CityParameters::small() : osgLoA::CityParameters();
-        try
-        {
-            params.parse(city);
-            params.validate();
-        }
-        catch (const std::invalid_argument& e)
-        {
-            throw loa::UsageError(std::string("--city: ") + e.what());
-        }
-        osg::ref_ptr<osg::Group> scene = osgLoA::CityGenerator(params).generate();
-        const osgLoA::SceneStatistics stats = osgLoA::SceneStatistics::collect(*scene);
+            osgLoA::CityParameters params =
+                small ? osgLoA::CityParameters::small() : osgLoA::CityParameters();
+            try
+            {
+                params.parse(city);
+                params.validate();
+            }
+            catch (const std::invalid_argument& e)
+            {
+                throw loa::UsageError(std::string("--city: ") + e.what());
+            }
+            osg::ref_ptr<osg::Group> scene = osgLoA::CityGenerator(params).generate();
+            const osgLoA::SceneStatistics stats = osgLoA::SceneStatistics::collect(*scene);
 
-        osg::ref_ptr<osgDB::Options> options = new osgDB::Options;
-        const bool native = ext == "osgb" || ext == "osgt" || ext == "osgx" || ext == "ive";
-        if (native)
-            options->setOptionString(ext == "ive" ? "" : "WriteImageHint=IncludeData");
-        options->setPluginStringData("fileNameOnly", "true");
-        CollectImages images;
-        scene->accept(images);
-        osgLoA::AtomicFile::write(output, [&](const std::string& temp) {
-            if (!native) // formats that reference textures by file name get them beside the model
-                for (osg::Image* img : images.images)
-                    osgLoA::ImageFile::write(osgDB::concatPaths(osgDB::getFilePath(temp), img->getFileName()), *img);
-            return osgDB::Registry::instance()->writeNode(*scene, temp, options.get()).success();
+            osg::ref_ptr<osgDB::Options> options = new osgDB::Options;
+            const bool native = ext == "osgb" || ext == "osgt" || ext == "osgx" || ext == "ive";
+            if (native) options->setOptionString(ext == "ive" ? "" : "WriteImageHint=IncludeData");
+            options->setPluginStringData("fileNameOnly", "true");
+            CollectImages images;
+            scene->accept(images);
+            osgLoA::AtomicFile::write(
+                output,
+                [&](const std::string& temp)
+                {
+                    if (!native) // formats that reference textures by file name get them beside the model
+                        for (osg::Image* img : images.images)
+                            osgLoA::ImageFile::write(
+                                osgDB::concatPaths(osgDB::getFilePath(temp), img->getFileName()), *img);
+                    return osgDB::Registry::instance()->writeNode(*scene, temp, options.get()).success();
+                });
+            std::cout << "wrote " << output << ": " << stats.summary() << "\n"
+                      << "parameters: " << params.toString() << "\n";
+            return loa::kOk;
         });
-        std::cout << "wrote " << output << ": " << stats.summary() << "\n"
-                  << "parameters: " << params.toString() << "\n";
-        return loa::kOk;
-    }
-    catch (const loa::UsageError& e)
-    {
-        std::cerr << "loa-citygen: error: " << e.what() << "\n";
-        return loa::kUsage;
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "loa-citygen: error: " << e.what() << "\n";
-        return loa::kFailure;
-    }
 }

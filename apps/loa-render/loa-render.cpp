@@ -8,6 +8,7 @@
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageFile>
+#include <osgLoA/util/JsonString>
 #include <osgLoA/util/MachineInfo>
 #include <osgLoA/util/SceneStatistics>
 
@@ -81,7 +82,8 @@ Options parse(int argc, char** argv)
         {
             o.camera.name = args.value(a);
             if (!osgLoA::CityCameras::isName(o.camera.name))
-                throw loa::UsageError("unknown camera '" + o.camera.name + "' (known: street, oblique, top, horizon)");
+                throw loa::UsageError("unknown camera '" + o.camera.name +
+                                      "' (known: street, oblique, top, horizon)");
         }
         else if (a == "--eye")
             o.camera.eye = loa::parseVec3(a, args.value(a)), o.camera.haveEye = true;
@@ -116,10 +118,8 @@ Options parse(int argc, char** argv)
         else
             throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
     }
-    if (o.camera.haveEye != o.camera.haveCenter)
-        throw loa::UsageError("--eye and --center go together");
-    if (o.camera.haveUp && !o.camera.haveEye)
-        throw loa::UsageError("--up needs --eye and --center");
+    if (o.camera.haveEye != o.camera.haveCenter) throw loa::UsageError("--eye and --center go together");
+    if (o.camera.haveUp && !o.camera.haveEye) throw loa::UsageError("--up needs --eye and --center");
     if (!o.camera.name.empty() && o.camera.haveEye)
         throw loa::UsageError("--camera and --eye/--center exclude each other");
     if (osgDB::getLowerCaseFileExtension(o.out) != "png")
@@ -155,11 +155,11 @@ int run(const Options& o)
                 throw loa::UsageError(std::string("--city: ") + e.what());
             }
             scene = osgLoA::CityGenerator(params).generate();
-            what = "the demo city (seed " + std::to_string(params.seed) + ", " + std::to_string(params.blocksX) + "x" +
-                   std::to_string(params.blocksY) + " blocks)";
+            what = "the demo city (seed " + std::to_string(params.seed) + ", " +
+                   std::to_string(params.blocksX) + "x" + std::to_string(params.blocksY) + " blocks)";
         }
         loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
-}
+    }
     osgLoA::OffscreenRenderer::Settings settings;
     settings.width = o.width;
     settings.height = o.height;
@@ -178,9 +178,9 @@ int run(const Options& o)
     if (o.program == "plain")
     {
         osg::StateSet* ss = scene->getOrCreateStateSet();
-        ss->setAttributeAndModes(osgLoA::ShaderLibrary::createProgram(
-                                     "plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"})
-                                     .get());
+        ss->setAttributeAndModes(
+            osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"})
+                .get());
         ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
     }
     renderer->setSceneData(scene.get());
@@ -188,8 +188,7 @@ int run(const Options& o)
 
     const osgLoA::SceneStatistics stats = osgLoA::SceneStatistics::collect(*scene);
     osgLoA::FrameTimes times;
-    if (o.frames > 0)
-        times = renderer->timeFrames(o.frames);
+    if (o.frames > 0) times = renderer->timeFrames(o.frames);
     osg::ref_ptr<osg::Image> image = renderer->renderImage();
     osgLoA::ImageFile::write(o.out, *image);
 
@@ -209,17 +208,20 @@ int run(const Options& o)
     if (!o.stats.empty())
     {
         std::ostringstream j;
-        j << std::setprecision(6) << "{\n  \"tool\": \"loa-render\", \"version\": \"" << osgLoAGetVersion() << "\",\n"
-          << "  \"model\": \"" << loa::jsonEscape(o.model.empty() ? "demo-city" : o.model) << "\",\n"
-          << "  \"camera\": \"" << loa::jsonEscape(o.camera.describe()) << "\",\n"
-          << "  \"width\": " << o.width << ", \"height\": " << o.height << ", \"samples\": " << o.samples << ",\n"
-          << "  \"frames\": " << o.frames << ", \"median_ms\": " << times.median() << ", \"min_ms\": " << times.min()
-          << ", \"max_ms\": " << times.max() << ",\n  \"frame_ms\": [";
+        j << std::setprecision(6) << "{\n  \"tool\": \"loa-render\", \"version\": \"" << osgLoAGetVersion()
+          << "\",\n"
+          << "  \"model\": \"" << osgLoA::jsonEscape(o.model.empty() ? "demo-city" : o.model) << "\",\n"
+          << "  \"camera\": \"" << osgLoA::jsonEscape(o.camera.describe()) << "\",\n"
+          << "  \"width\": " << o.width << ", \"height\": " << o.height << ", \"samples\": " << o.samples
+          << ",\n"
+          << "  \"frames\": " << o.frames << ", \"median_ms\": " << times.median()
+          << ", \"min_ms\": " << times.min() << ", \"max_ms\": " << times.max() << ",\n  \"frame_ms\": [";
         for (size_t i = 0; i < times.milliseconds.size(); ++i)
             j << (i ? ", " : "") << times.milliseconds[i];
         j << "],\n  \"scene\": " << stats.toJson() << ",\n  \"gl\": " << caps.toJson() << ",\n"
-          << "  \"machine\": {\"cpu\": \"" << loa::jsonEscape(machine.cpuModel) << "\", \"cores\": " << machine.cores
-          << ", \"memory_gib\": " << machine.memoryGiB << ", \"os\": \"" << loa::jsonEscape(machine.os) << "\"}\n}\n";
+          << "  \"machine\": {\"cpu\": \"" << osgLoA::jsonEscape(machine.cpuModel)
+          << "\", \"cores\": " << machine.cores << ", \"memory_gib\": " << machine.memoryGiB << ", \"os\": \""
+          << osgLoA::jsonEscape(machine.os) << "\"}\n}\n";
         osgLoA::AtomicFile::writeText(o.stats, j.str());
         std::cout << "wrote " << o.stats << "\n";
     }
@@ -229,28 +231,5 @@ int run(const Options& o)
 
 int main(int argc, char** argv)
 {
-    try
-    {
-        return run(parse(argc, argv));
-    }
-    catch (const loa::UsageError& e)
-    {
-        std::cerr << "loa-render: error: " << e.what() << "\n";
-        return loa::kUsage;
-    }
-    catch (const osgLoA::HeadlessContextError& e)
-    {
-        std::cerr << "loa-render: error: " << e.what() << "\n";
-        return loa::kNoContext;
-    }
-    catch (const std::invalid_argument& e)
-    {
-        std::cerr << "loa-render: error: " << e.what() << "\n";
-        return loa::kUsage;
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "loa-render: error: " << e.what() << "\n";
-        return loa::kFailure;
-    }
+    return loa::runTool("loa-render", [&] { return run(parse(argc, argv)); });
 }

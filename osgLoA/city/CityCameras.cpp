@@ -6,8 +6,8 @@
 #include <osgUtil/LineSegmentIntersector>
 
 #include <cmath>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
 namespace osgLoA
 {
@@ -40,13 +40,15 @@ public:
 };
 } // namespace
 
-std::vector<std::string> CityCameras::names() { return {"street", "oblique", "top", "horizon"}; }
+std::vector<std::string> CityCameras::names()
+{
+    return {"street", "oblique", "top", "horizon"};
+}
 
 bool CityCameras::isName(const std::string& name)
 {
     for (const auto& n : names())
-        if (n == name)
-            return true;
+        if (n == name) return true;
     return false;
 }
 
@@ -75,8 +77,7 @@ CameraPose CityCameras::compute(const std::string& name, osg::Node& scene, doubl
         scene.accept(cbv);
         box = cbv.getBoundingBox();
     }
-    if (!box.valid())
-        throw std::invalid_argument("camera '" + name + "' needs a scene with geometry");
+    if (!box.valid()) throw std::invalid_argument("camera '" + name + "' needs a scene with geometry");
 
     CameraPose pose;
     pose.up.set(0, 0, 1);
@@ -116,8 +117,7 @@ CameraPose CityCameras::compute(const std::string& name, osg::Node& scene, doubl
         {
             const osg::Vec3d d = osg::Vec3d(m.center()) - c;
             const double d2 = d.x() * d.x() + d.y() * d.y();
-            if (d2 < best)
-                best = d2, s = m;
+            if (d2 < best) best = d2, s = m;
         }
         if (s.valid())
         {

@@ -40,7 +40,10 @@ public:
     /** Uniform in [0, 1) with 53 bits. */
     double uniform() { return static_cast<double>(next() >> 11) * (1.0 / 9007199254740992.0); }
     double uniform(double a, double b) { return a + (b - a) * uniform(); }
-    int integer(int lo, int hi) { return lo + static_cast<int>(next() % static_cast<std::uint64_t>(hi - lo + 1)); }
+    int integer(int lo, int hi)
+    {
+        return lo + static_cast<int>(next() % static_cast<std::uint64_t>(hi - lo + 1));
+    }
 
 private:
     std::uint64_t _state;
@@ -54,8 +57,7 @@ std::uint64_t streamSeed(unsigned seed, std::uint64_t a, std::uint64_t b)
 
 double smoothstep(double e0, double e1, double x)
 {
-    if (e1 <= e0)
-        return x < e0 ? 0.0 : 1.0;
+    if (e1 <= e0) return x < e0 ? 0.0 : 1.0;
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
 }
@@ -63,7 +65,8 @@ double smoothstep(double e0, double e1, double x)
 /** Value noise in [0, 1] on an integer lattice, smoothly interpolated. */
 double lattice(unsigned seed, long long ix, long long iy)
 {
-    Random r(streamSeed(seed, static_cast<std::uint64_t>(ix) & 0xffffffffull, static_cast<std::uint64_t>(iy)));
+    Random r(
+        streamSeed(seed, static_cast<std::uint64_t>(ix) & 0xffffffffull, static_cast<std::uint64_t>(iy)));
     return r.uniform();
 }
 double valueNoise(unsigned seed, double x, double y)
@@ -114,17 +117,15 @@ public:
     osg::StateSet* textured(const std::string& kind)
     {
         auto it = _sets.find(kind);
-        if (it != _sets.end())
-            return it->second.get();
+        if (it != _sets.end()) return it->second.get();
         osg::ref_ptr<osg::Image> image;
         for (const FacadeStyle& s : CityTextures::facadeStyles())
-            if (s.name == kind)
-                image = CityTextures::facade(s);
-        if (!image)
-            image = CityTextures::surface(kind);
+            if (s.name == kind) image = CityTextures::facade(s);
+        if (!image) image = CityTextures::surface(kind);
         osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
         ss->setName(kind);
-        ss->setTextureAttributeAndModes(0, CityTextures::makeTexture(image.get()).get(), osg::StateAttribute::ON);
+        ss->setTextureAttributeAndModes(0, CityTextures::makeTexture(image.get()).get(),
+                                        osg::StateAttribute::ON);
         _sets[kind] = ss;
         return ss.get();
     }
@@ -132,8 +133,7 @@ public:
     {
         const std::string key = kind + "#draped";
         auto it = _sets.find(key);
-        if (it != _sets.end())
-            return it->second.get();
+        if (it != _sets.end()) return it->second.get();
         osg::ref_ptr<osg::StateSet> ss = new osg::StateSet(*textured(kind), osg::CopyOp::SHALLOW_COPY);
         ss->setAttributeAndModes(new osg::PolygonOffset(-1.0f, -4.0f), osg::StateAttribute::ON);
         _sets[key] = ss;
@@ -147,8 +147,7 @@ private:
 osg::ref_ptr<osg::Geode> geodeWith(osg::ref_ptr<osg::Geometry> g, osg::StateSet* ss)
 {
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    if (ss)
-        g->setStateSet(ss);
+    if (ss) g->setStateSet(ss);
     geode->addDrawable(g.get());
     return geode;
 }
@@ -162,12 +161,14 @@ CityGenerator::CityGenerator(const CityParameters& parameters) : _p(parameters)
 
 void CityGenerator::computeLayout()
 {
-    auto lines = [&](int blocks, std::vector<double>& pos, std::vector<bool>& major) {
+    auto lines = [&](int blocks, std::vector<double>& pos, std::vector<bool>& major)
+    {
         pos.assign(static_cast<size_t>(blocks) + 1, 0.0);
         major.assign(static_cast<size_t>(blocks) + 1, false);
         for (int i = 0; i <= blocks; ++i)
             major[static_cast<size_t>(i)] = i % _p.majorRoadEvery == 0;
-        auto width = [&](int i) { return major[static_cast<size_t>(i)] ? _p.majorRoadWidth : _p.minorRoadWidth; };
+        auto width = [&](int i)
+        { return major[static_cast<size_t>(i)] ? _p.majorRoadWidth : _p.minorRoadWidth; };
         for (int i = 1; i <= blocks; ++i)
             pos[static_cast<size_t>(i)] =
                 pos[static_cast<size_t>(i) - 1] + width(i - 1) / 2 + _p.blockSize + width(i) / 2;
@@ -233,7 +234,8 @@ double CityGenerator::terrainHeight(double x, double y) const
     const double dy = std::max({0.0, (t.yMin() + m) - y, y - (t.yMax() - m)}) / m;
     const double outside = std::clamp(std::max(dx, dy), 0.0, 1.0);
     double h = 3.0 + 4.0 * fbm(_p.seed * 3u + 1u, x / 300.0 + 17.0, y / 300.0 + 5.0);
-    h += _p.reliefAmplitude * smoothstep(0.0, 1.0, outside) * fbm(_p.seed * 3u + 2u, x / 350.0, y / 350.0) * 1.6;
+    h += _p.reliefAmplitude * smoothstep(0.0, 1.0, outside) * fbm(_p.seed * 3u + 2u, x / 350.0, y / 350.0) *
+         1.6;
     if (_p.river)
     {
         const double d = std::fabs(x - riverCenterX(y));
@@ -250,13 +252,14 @@ double CityGenerator::meshHeight(double x, double y) const
     const double gy = std::clamp((y - _layout.terrainBounds.yMin()) / _terrainStepY, 0.0, n - 1.0);
     const int i = std::min(static_cast<int>(gx), n - 2), j = std::min(static_cast<int>(gy), n - 2);
     const double fx = gx - i, fy = gy - j;
-    auto H = [&](int a, int b) {
-        return static_cast<double>(_heights[static_cast<size_t>(b) * static_cast<size_t>(n) + static_cast<size_t>(a)]);
+    auto H = [&](int a, int b)
+    {
+        return static_cast<double>(
+            _heights[static_cast<size_t>(b) * static_cast<size_t>(n) + static_cast<size_t>(a)]);
     };
     const double h00 = H(i, j), h10 = H(i + 1, j), h01 = H(i, j + 1), h11 = H(i + 1, j + 1);
     // The mesh splits each cell along (i,j)-(i+1,j+1).
-    if (fx >= fy)
-        return h00 + fx * (h10 - h00) + fy * (h11 - h10);
+    if (fx >= fy) return h00 + fx * (h10 - h00) + fy * (h11 - h10);
     return h00 + fy * (h01 - h00) + fx * (h11 - h01);
 }
 
@@ -300,14 +303,15 @@ public:
                 const double hy = g.meshHeight(x, y + sy) - g.meshHeight(x, y - sy);
                 osg::Vec3 nrm(static_cast<float>(-hx / (2 * sx)), static_cast<float>(-hy / (2 * sy)), 1.0f);
                 nrm.normalize();
-                mb.vertex(osg::Vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(g.meshHeight(x, y))),
+                mb.vertex(osg::Vec3(static_cast<float>(x), static_cast<float>(y),
+                                    static_cast<float>(g.meshHeight(x, y))),
                           nrm, osg::Vec2(static_cast<float>(x / 25.0), static_cast<float>(y / 25.0)));
             }
         for (int j = 0; j + 1 < n; ++j)
             for (int i = 0; i + 1 < n; ++i)
             {
-                const unsigned a = static_cast<unsigned>(j * n + i), b = a + 1, c = a + static_cast<unsigned>(n) + 1,
-                               d = a + static_cast<unsigned>(n);
+                const unsigned a = static_cast<unsigned>(j * n + i), b = a + 1,
+                               c = a + static_cast<unsigned>(n) + 1, d = a + static_cast<unsigned>(n);
                 mb.triangleIndices(a, b, c);
                 mb.triangleIndices(a, c, d);
             }
@@ -389,7 +393,8 @@ public:
             }
         }
         osg::ref_ptr<osg::Group> f = feature(FeatureType::Street, major ? "major" : "minor");
-        f->addChild(geodeWith(mb.build("TrafficArea"), states.draped(major ? "road-major" : "road-minor")).get());
+        f->addChild(
+            geodeWith(mb.build("TrafficArea"), states.draped(major ? "road-major" : "road-minor")).get());
         return f;
     }
 
@@ -412,7 +417,8 @@ public:
             for (int i = 0; i < nx; ++i)
             {
                 const unsigned a = base + static_cast<unsigned>(j * (nx + 1) + i), b = a + 1,
-                               c = a + static_cast<unsigned>(nx + 1) + 1, d = a + static_cast<unsigned>(nx + 1);
+                               c = a + static_cast<unsigned>(nx + 1) + 1,
+                               d = a + static_cast<unsigned>(nx + 1);
                 mb.triangleIndices(a, b, c);
                 mb.triangleIndices(a, c, d);
             }
@@ -426,9 +432,12 @@ public:
         for (int k = 0; k < 4; ++k) // square trunk
         {
             const double a0 = kPi / 2 * k, a1 = kPi / 2 * (k + 1);
-            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr, 0);
-            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr, 0);
-            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th), base + d0 + osg::Vec3(0, 0, th)};
+            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr,
+                               0);
+            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr,
+                               0);
+            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th),
+                                    base + d0 + osg::Vec3(0, 0, th)};
             const osg::Vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
             trunk.quad(q, t, &centre);
         }
@@ -454,9 +463,12 @@ public:
         for (int k = 0; k < 4; ++k)
         {
             const double a0 = kPi / 2 * k, a1 = kPi / 2 * (k + 1);
-            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr, 0);
-            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr, 0);
-            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th), base + d0 + osg::Vec3(0, 0, th)};
+            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr,
+                               0);
+            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr,
+                               0);
+            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th),
+                                    base + d0 + osg::Vec3(0, 0, th)};
             const osg::Vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
             const osg::Vec3 mid = base + osg::Vec3(0, 0, th / 2);
             trunk.quad(q, t, &mid);
@@ -467,13 +479,14 @@ public:
         const float r = 0.32f * H;
         const osg::Vec3 c = base + osg::Vec3(0, 0, 0.66f * H);
         const float t = 1.618034f;
-        const osg::Vec3 v[12] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+        const osg::Vec3 v[12] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
         static const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                      {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                      {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
                                      {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-        auto P = [&](int i) {
+        auto P = [&](int i)
+        {
             osg::Vec3 q = v[i];
             q.normalize();
             return c + osg::Vec3(q.x() * r, q.y() * r, q.z() * r * 0.8f);
@@ -482,7 +495,8 @@ public:
             crown.triangle(P(tri[0]), P(tri[1]), P(tri[2]), {0, 0}, {1, 0}, {0.5f, 1}, &c);
     }
 
-    osg::ref_ptr<osg::Node> greenSpace(const Rect& block, bool forest, const std::string& subtype, Random& rng)
+    osg::ref_ptr<osg::Node> greenSpace(const Rect& block, bool forest, const std::string& subtype,
+                                       Random& rng)
     {
         const Rect r{block.x0 + 1, block.y0 + 1, block.x1 - 1, block.y1 - 1};
         MeshBuilder ground, crown, trunk;
@@ -509,7 +523,8 @@ public:
                 x = rng.uniform(inner.x0, inner.x1);
                 y = rng.uniform(inner.y0, inner.y1);
             }
-            const osg::Vec3 base(static_cast<float>(x), static_cast<float>(y), static_cast<float>(g.meshHeight(x, y)));
+            const osg::Vec3 base(static_cast<float>(x), static_cast<float>(y),
+                                 static_cast<float>(g.meshHeight(x, y)));
             const bool conifer = subtype == "coniferous" || (subtype == "mixed" && rng.uniform() < 0.5);
             const double h = conifer ? rng.uniform(12.0, 22.0) : rng.uniform(8.0, 16.0);
             if (conifer)
@@ -518,7 +533,9 @@ public:
                 deciduousTree(crown, trunk, base, h, rng);
         }
         osg::ref_ptr<osg::Group> f = feature(FeatureType::Green, subtype);
-        f->addChild(geodeWith(ground.build("PlantCover"), states.draped(forest ? "forest-floor" : "park-grass")).get());
+        f->addChild(
+            geodeWith(ground.build("PlantCover"), states.draped(forest ? "forest-floor" : "park-grass"))
+                .get());
         if (!crown.empty())
         {
             osg::ref_ptr<osg::Geode> trees = new osg::Geode;
@@ -552,7 +569,8 @@ public:
     static void boxWalls(MeshBuilder& walls, const Rect& r, double zb, double zt, double zGround,
                          const FacadeStyle& s)
     {
-        const osg::Vec3 centre(static_cast<float>(r.cx()), static_cast<float>(r.cy()), static_cast<float>((zb + zt) / 2));
+        const osg::Vec3 centre(static_cast<float>(r.cx()), static_cast<float>(r.cy()),
+                               static_cast<float>((zb + zt) / 2));
         const double cs[5][2] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}, {r.x0, r.y0}};
         const float v0 = static_cast<float>((zb - zGround) / (kStorey * s.floors));
         const float v1 = static_cast<float>((zt - zGround) / (kStorey * s.floors));
@@ -562,8 +580,9 @@ public:
             const float u1 = static_cast<float>(std::max(1.0, std::round(len / s.bayWidth)) / s.bays);
             const osg::Vec3 a(static_cast<float>(cs[e][0]), static_cast<float>(cs[e][1]), 0);
             const osg::Vec3 b(static_cast<float>(cs[e + 1][0]), static_cast<float>(cs[e + 1][1]), 0);
-            const osg::Vec3 q[4] = {a + osg::Vec3(0, 0, static_cast<float>(zb)), b + osg::Vec3(0, 0, static_cast<float>(zb)),
-                                    b + osg::Vec3(0, 0, static_cast<float>(zt)), a + osg::Vec3(0, 0, static_cast<float>(zt))};
+            const osg::Vec3 q[4] = {
+                a + osg::Vec3(0, 0, static_cast<float>(zb)), b + osg::Vec3(0, 0, static_cast<float>(zb)),
+                b + osg::Vec3(0, 0, static_cast<float>(zt)), a + osg::Vec3(0, 0, static_cast<float>(zt))};
             const osg::Vec2 t[4] = {{0, v0}, {u1, v0}, {u1, v1}, {0, v1}};
             walls.quad(q, t, &centre);
         }
@@ -592,7 +611,8 @@ public:
         const float rise = static_cast<float>(0.4 * span);
         const float ze = static_cast<float>(eave), zr = ze + rise;
         const osg::Vec3 centre(static_cast<float>(r.cx()), static_cast<float>(r.cy()), ze);
-        auto V = [](double x, double y, float z) { return osg::Vec3(static_cast<float>(x), static_cast<float>(y), z); };
+        auto V = [](double x, double y, float z)
+        { return osg::Vec3(static_cast<float>(x), static_cast<float>(y), z); };
         const float slope = static_cast<float>(std::hypot(span / 2, rise) / 4.0);
         if (alongX)
         {
@@ -606,8 +626,10 @@ public:
             const float vE = static_cast<float>((eave - zGround) / (kStorey * s.floors));
             const float vR = static_cast<float>((eave + rise - zGround) / (kStorey * s.floors));
             const float u = static_cast<float>(std::max(1.0, std::round(r.h() / s.bayWidth)) / s.bays);
-            walls.triangle(V(r.x0, r.y0, ze), V(r.x0, r.y1, ze), V(r.x0, ym, zr), {0, vE}, {u, vE}, {u / 2, vR}, &centre);
-            walls.triangle(V(r.x1, r.y0, ze), V(r.x1, r.y1, ze), V(r.x1, ym, zr), {0, vE}, {u, vE}, {u / 2, vR}, &centre);
+            walls.triangle(V(r.x0, r.y0, ze), V(r.x0, r.y1, ze), V(r.x0, ym, zr), {0, vE}, {u, vE},
+                           {u / 2, vR}, &centre);
+            walls.triangle(V(r.x1, r.y0, ze), V(r.x1, r.y1, ze), V(r.x1, ym, zr), {0, vE}, {u, vE},
+                           {u / 2, vR}, &centre);
         }
         else
         {
@@ -621,8 +643,10 @@ public:
             const float vE = static_cast<float>((eave - zGround) / (kStorey * s.floors));
             const float vR = static_cast<float>((eave + rise - zGround) / (kStorey * s.floors));
             const float u = static_cast<float>(std::max(1.0, std::round(r.w() / s.bayWidth)) / s.bays);
-            walls.triangle(V(r.x0, r.y0, ze), V(r.x1, r.y0, ze), V(xm, r.y0, zr), {0, vE}, {u, vE}, {u / 2, vR}, &centre);
-            walls.triangle(V(r.x0, r.y1, ze), V(r.x1, r.y1, ze), V(xm, r.y1, zr), {0, vE}, {u, vE}, {u / 2, vR}, &centre);
+            walls.triangle(V(r.x0, r.y0, ze), V(r.x1, r.y0, ze), V(xm, r.y0, zr), {0, vE}, {u, vE},
+                           {u / 2, vR}, &centre);
+            walls.triangle(V(r.x0, r.y1, ze), V(r.x1, r.y1, ze), V(xm, r.y1, zr), {0, vE}, {u, vE},
+                           {u / 2, vR}, &centre);
         }
     }
 
@@ -636,7 +660,8 @@ public:
             gableRoof(roof, walls, r, eave, zg, style);
         else
             flatRoof(roof, r, eave);
-        osg::ref_ptr<osg::Group> f = feature(FeatureType::Building, floors >= 6 ? "commercial" : "residential");
+        osg::ref_ptr<osg::Group> f =
+            feature(FeatureType::Building, floors >= 6 ? "commercial" : "residential");
         f->setUserValue("loa.building.floors", floors);
         f->setUserValue("loa.building.facade", style.name);
         osg::ref_ptr<osg::Geode> geode = new osg::Geode;
@@ -661,17 +686,16 @@ public:
             while (x < block.x1 - 10.0)
             {
                 double w = rng.uniform(14.0, 30.0);
-                if (block.x1 - 1.0 - (x + w) < 12.0)
-                    w = block.x1 - 1.0 - x; // the last lot takes the rest
+                if (block.x1 - 1.0 - (x + w) < 12.0) w = block.x1 - 1.0 - x; // the last lot takes the rest
                 const Rect lot{x + 1.0, ry0, x + w - 1.0, ry0 + depth * rng.uniform(0.75, 1.0)};
-                const Rect fpRect = row == 0 ? lot : Rect{lot.x0, block.y1 - 2.0 - lot.h(), lot.x1, block.y1 - 2.0};
+                const Rect fpRect =
+                    row == 0 ? lot : Rect{lot.x0, block.y1 - 2.0 - lot.h(), lot.x1, block.y1 - 2.0};
                 x += w;
-                if (rng.uniform() < 0.08 || fpRect.w() < 6.0)
-                    continue; // an empty lot: a courtyard or a gap
+                if (rng.uniform() < 0.08 || fpRect.w() < 6.0) continue; // an empty lot: a courtyard or a gap
                 const double tall = std::pow(rng.uniform(), 1.5) * (0.35 + 0.65 * centrality);
-                const int floors =
-                    std::clamp(p.minFloors + static_cast<int>(std::lround(tall * (p.maxFloors - p.minFloors))),
-                               p.minFloors, p.maxFloors);
+                const int floors = std::clamp(
+                    p.minFloors + static_cast<int>(std::lround(tall * (p.maxFloors - p.minFloors))),
+                    p.minFloors, p.maxFloors);
                 int si = rng.integer(0, static_cast<int>(styles.size()) - 1);
                 if (floors >= 7 && rng.uniform() < 0.6)
                     si = rng.uniform() < 0.5 ? 2 : 5; // tall buildings: glass or modern
@@ -693,8 +717,8 @@ public:
         {
             const double a = 2 * kPi * k / seg;
             const osg::Vec3 n(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0);
-            const osg::Vec3 pb(static_cast<float>(cx + r * std::cos(a)), static_cast<float>(cy + r * std::sin(a)),
-                               static_cast<float>(zb));
+            const osg::Vec3 pb(static_cast<float>(cx + r * std::cos(a)),
+                               static_cast<float>(cy + r * std::sin(a)), static_cast<float>(zb));
             const float u = uMax * static_cast<float>(k) / static_cast<float>(seg);
             mb.vertex(pb, n, {u, v0});
             mb.vertex(osg::Vec3(pb.x(), pb.y(), static_cast<float>(zt)), n, {u, v1});
@@ -714,10 +738,10 @@ public:
         for (int k = 0; k < seg; ++k)
         {
             const double a0 = 2 * kPi * k / seg, a1 = 2 * kPi * (k + 1) / seg;
-            const osg::Vec3 b0(static_cast<float>(cx + r * std::cos(a0)), static_cast<float>(cy + r * std::sin(a0)),
-                               static_cast<float>(zb));
-            const osg::Vec3 b1(static_cast<float>(cx + r * std::cos(a1)), static_cast<float>(cy + r * std::sin(a1)),
-                               static_cast<float>(zb));
+            const osg::Vec3 b0(static_cast<float>(cx + r * std::cos(a0)),
+                               static_cast<float>(cy + r * std::sin(a0)), static_cast<float>(zb));
+            const osg::Vec3 b1(static_cast<float>(cx + r * std::cos(a1)),
+                               static_cast<float>(cy + r * std::sin(a1)), static_cast<float>(zb));
             mb.triangle(b0, b1, apex, {static_cast<float>(k), 0}, {static_cast<float>(k + 1), 0},
                         {static_cast<float>(k) + 0.5f, static_cast<float>(h / 4.0)}, &centre);
         }
@@ -726,7 +750,8 @@ public:
     static void dome(MeshBuilder& mb, double cx, double cy, double r, double zb, int seg, int rings)
     {
         const osg::Vec3 c(static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(zb));
-        auto P = [&](int k, int i) {
+        auto P = [&](int k, int i)
+        {
             const double a = 2 * kPi * k / seg, e = 0.5 * kPi * i / rings;
             return osg::Vec3(static_cast<float>(cx + r * std::cos(e) * std::cos(a)),
                              static_cast<float>(cy + r * std::cos(e) * std::sin(a)),
@@ -751,9 +776,8 @@ public:
 
     static void pyramid(MeshBuilder& mb, const Rect& r, double zb, double h)
     {
-        auto V = [](double x, double y, double z) {
-            return osg::Vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
-        };
+        auto V = [](double x, double y, double z)
+        { return osg::Vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)); };
         const osg::Vec3 apex = V(r.cx(), r.cy(), zb + h), c = V(r.cx(), r.cy(), zb);
         const osg::Vec3 cs[5] = {V(r.x0, r.y0, zb), V(r.x1, r.y0, zb), V(r.x1, r.y1, zb), V(r.x0, r.y1, zb),
                                  V(r.x0, r.y0, zb)};
@@ -874,18 +898,19 @@ osg::ref_ptr<osg::Group> CityGenerator::generate()
     ss->setMode(GL_LIGHTING, osg::StateAttribute::ON);
     ss->setMode(GL_NORMALIZE, osg::StateAttribute::OFF);
 
-    auto group = [&](const char* name) {
+    auto group = [&](const char* name)
+    {
         osg::ref_ptr<osg::Group> g = new osg::Group;
         g->setName(name);
         root->addChild(g.get());
         return g;
     };
-    osg::ref_ptr<osg::Group> terrainG = group("Terrain"), waterG = group("Water"), streetsG = group("Streets"),
-                             greenG = group("GreenSpaces"), buildingsG = group("Buildings");
+    osg::ref_ptr<osg::Group> terrainG = group("Terrain"), waterG = group("Water"),
+                             streetsG = group("Streets"), greenG = group("GreenSpaces"),
+                             buildingsG = group("Buildings");
 
     terrainG->addChild(b.terrain().get());
-    if (_p.river)
-        waterG->addChild(b.water().get());
+    if (_p.river) waterG->addChild(b.water().get());
     for (size_t i = 0; i < _layout.roadLinesX.size(); ++i)
         streetsG->addChild(b.street(false, i).get());
     for (size_t i = 0; i < _layout.roadLinesY.size(); ++i)
@@ -905,7 +930,8 @@ osg::ref_ptr<osg::Group> CityGenerator::generate()
             const double wx0 = _layout.roadLineXMajor[X] ? _p.majorRoadWidth : _p.minorRoadWidth;
             const double wy0 = _layout.roadLineYMajor[Y] ? _p.majorRoadWidth : _p.minorRoadWidth;
             rects[i] = Rect{_layout.roadLinesX[X] + wx0 / 2, _layout.roadLinesY[Y] + wy0 / 2,
-                            _layout.roadLinesX[X] + wx0 / 2 + _p.blockSize, _layout.roadLinesY[Y] + wy0 / 2 + _p.blockSize};
+                            _layout.roadLinesX[X] + wx0 / 2 + _p.blockSize,
+                            _layout.roadLinesY[Y] + wy0 / 2 + _p.blockSize};
             bool riverside = false;
             if (_p.river)
                 for (double y = rects[i].y0; y <= rects[i].y1 + 1e-9 && !riverside; y += 5.0)
@@ -922,29 +948,30 @@ osg::ref_ptr<osg::Group> CityGenerator::generate()
     // parks and forests (at least one each where the fraction is non-zero), at random.
     Random layoutRng(streamSeed(_p.seed, 2, 0));
     const double ccx = _layout.cityBounds.center().x(), ccy = _layout.cityBounds.center().y();
-    auto centralityOf = [&](size_t i) {
+    auto centralityOf = [&](size_t i)
+    {
         const double dx = (rects[i].cx() - ccx) / std::max(1.0, _layout.cityBounds.xMax() - ccx);
         const double dy = (rects[i].cy() - ccy) / std::max(1.0, _layout.cityBounds.yMax() - ccy);
         return std::clamp(1.0 - std::sqrt(dx * dx + dy * dy) / 1.4142, 0.0, 1.0);
     };
-    std::stable_sort(available.begin(), available.end(), [&](int a, int c) {
-        return centralityOf(static_cast<size_t>(a)) > centralityOf(static_cast<size_t>(c));
-    });
+    std::stable_sort(available.begin(), available.end(),
+                     [&](int a, int c)
+                     { return centralityOf(static_cast<size_t>(a)) > centralityOf(static_cast<size_t>(c)); });
     for (size_t k = available.size(); k > 2; --k) // shuffle all but the most central
     {
         const size_t j = 1 + static_cast<size_t>(layoutRng.next() % (k - 1));
         std::swap(available[k - 1], available[j]);
     }
     size_t cursor = 0;
-    auto take = [&](int count, BlockKind kind) {
+    auto take = [&](int count, BlockKind kind)
+    {
         for (int k = 0; k < count && cursor < available.size(); ++k)
             kinds[static_cast<size_t>(available[cursor++])] = kind;
     };
     const int free = static_cast<int>(available.size());
     take(std::min(_p.landmarks, free), BlockKind::Landmark);
-    auto quota = [&](double fraction) {
-        return fraction <= 0.0 ? 0 : std::max(1, static_cast<int>(std::lround(fraction * free)));
-    };
+    auto quota = [&](double fraction)
+    { return fraction <= 0.0 ? 0 : std::max(1, static_cast<int>(std::lround(fraction * free))); };
     take(quota(_p.parkFraction), BlockKind::Park);
     take(quota(_p.forestFraction), BlockKind::Forest);
 
@@ -956,13 +983,20 @@ osg::ref_ptr<osg::Group> CityGenerator::generate()
         Random rng(streamSeed(_p.seed, 3, k));
         switch (kinds[k])
         {
-        case BlockKind::Riverside: break;
-        case BlockKind::Park: greenG->addChild(b.greenSpace(rects[k], false, "park", rng).get()); break;
+        case BlockKind::Riverside:
+            break;
+        case BlockKind::Park:
+            greenG->addChild(b.greenSpace(rects[k], false, "park", rng).get());
+            break;
         case BlockKind::Forest:
             greenG->addChild(b.greenSpace(rects[k], true, forestTypes[forestIndex++ % 3], rng).get());
             break;
-        case BlockKind::Landmark: buildingsG->addChild(b.landmark(rects[k], landmarkIndex++).get()); break;
-        case BlockKind::Buildings: b.buildingBlock(buildingsG.get(), rects[k], centralityOf(k), rng); break;
+        case BlockKind::Landmark:
+            buildingsG->addChild(b.landmark(rects[k], landmarkIndex++).get());
+            break;
+        case BlockKind::Buildings:
+            b.buildingBlock(buildingsG.get(), rects[k], centralityOf(k), rng);
+            break;
         }
     }
     return root;

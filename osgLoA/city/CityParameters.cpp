@@ -47,25 +47,25 @@ void CityParameters::validate() const
     if (!(riverWidth >= 5.0 && riverWidth <= 3.0 * blockSize)) fail("riverWidth must be in 5 m..3 blockSize");
     if (!(parkFraction >= 0.0 && forestFraction >= 0.0 && parkFraction + forestFraction <= 1.0))
         fail("parkFraction and forestFraction must be non-negative and sum to at most 1");
-    if (!(parkTreesPerHectare >= 0.0 && parkTreesPerHectare <= 2000.0)) fail("parkTreesPerHectare must be in 0..2000");
+    if (!(parkTreesPerHectare >= 0.0 && parkTreesPerHectare <= 2000.0))
+        fail("parkTreesPerHectare must be in 0..2000");
     if (!(forestTreesPerHectare >= 0.0 && forestTreesPerHectare <= 2000.0))
         fail("forestTreesPerHectare must be in 0..2000");
     if (landmarks < 0 || landmarks > blocksX * blocksY) fail("landmarks must be in 0..blocksX*blocksY");
-    if (minFloors < 1 || maxFloors < minFloors || maxFloors > 200) fail("floors must satisfy 1 <= minFloors <= maxFloors <= 200");
+    if (minFloors < 1 || maxFloors < minFloors || maxFloors > 200)
+        fail("floors must satisfy 1 <= minFloors <= maxFloors <= 200");
 }
 
 void CityParameters::parse(const std::string& options)
 {
     std::string s = options;
     for (char& c : s)
-        if (c == ',')
-            c = ' ';
+        if (c == ',') c = ' ';
     std::istringstream in(s);
     for (std::string kv; in >> kv;)
     {
         const auto eq = kv.find('=');
-        if (eq == std::string::npos)
-            throw std::invalid_argument("city option '" + kv + "' is not key=value");
+        if (eq == std::string::npos) throw std::invalid_argument("city option '" + kv + "' is not key=value");
         const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
         std::size_t used = 0;
         double v = 0.0;
@@ -80,9 +80,11 @@ void CityParameters::parse(const std::string& options)
         const bool isBool = value == "true" || value == "false";
         if (!isBool && (used != value.size() || value.empty() || !std::isfinite(v)))
             throw std::invalid_argument("city option '" + key + "' has a non-numeric value '" + value + "'");
-        auto asInt = [&]() {
+        auto asInt = [&]()
+        {
             if (v != std::floor(v) || std::fabs(v) > 1e9)
-                throw std::invalid_argument("city option '" + key + "' needs an integer, not '" + value + "'");
+                throw std::invalid_argument("city option '" + key + "' needs an integer, not '" + value +
+                                            "'");
             return static_cast<int>(v);
         };
         if (key == "seed")
@@ -91,24 +93,42 @@ void CityParameters::parse(const std::string& options)
                 throw std::invalid_argument("city option 'seed' needs an integer in 0..2^32-1");
             seed = static_cast<unsigned>(v);
         }
-        else if (key == "blocksX") blocksX = asInt();
-        else if (key == "blocksY") blocksY = asInt();
-        else if (key == "blockSize") blockSize = v;
-        else if (key == "minorRoadWidth") minorRoadWidth = v;
-        else if (key == "majorRoadWidth") majorRoadWidth = v;
-        else if (key == "majorRoadEvery") majorRoadEvery = asInt();
-        else if (key == "terrainResolution") terrainResolution = asInt();
-        else if (key == "terrainMargin") terrainMargin = v;
-        else if (key == "reliefAmplitude") reliefAmplitude = v;
-        else if (key == "river") river = isBool ? value == "true" : v != 0.0;
-        else if (key == "riverWidth") riverWidth = v;
-        else if (key == "parkFraction") parkFraction = v;
-        else if (key == "forestFraction") forestFraction = v;
-        else if (key == "parkTreesPerHectare") parkTreesPerHectare = v;
-        else if (key == "forestTreesPerHectare") forestTreesPerHectare = v;
-        else if (key == "landmarks") landmarks = asInt();
-        else if (key == "minFloors") minFloors = asInt();
-        else if (key == "maxFloors") maxFloors = asInt();
+        else if (key == "blocksX")
+            blocksX = asInt();
+        else if (key == "blocksY")
+            blocksY = asInt();
+        else if (key == "blockSize")
+            blockSize = v;
+        else if (key == "minorRoadWidth")
+            minorRoadWidth = v;
+        else if (key == "majorRoadWidth")
+            majorRoadWidth = v;
+        else if (key == "majorRoadEvery")
+            majorRoadEvery = asInt();
+        else if (key == "terrainResolution")
+            terrainResolution = asInt();
+        else if (key == "terrainMargin")
+            terrainMargin = v;
+        else if (key == "reliefAmplitude")
+            reliefAmplitude = v;
+        else if (key == "river")
+            river = isBool ? value == "true" : v != 0.0;
+        else if (key == "riverWidth")
+            riverWidth = v;
+        else if (key == "parkFraction")
+            parkFraction = v;
+        else if (key == "forestFraction")
+            forestFraction = v;
+        else if (key == "parkTreesPerHectare")
+            parkTreesPerHectare = v;
+        else if (key == "forestTreesPerHectare")
+            forestTreesPerHectare = v;
+        else if (key == "landmarks")
+            landmarks = asInt();
+        else if (key == "minFloors")
+            minFloors = asInt();
+        else if (key == "maxFloors")
+            maxFloors = asInt();
         else
             throw std::invalid_argument("unknown city option '" + key + "'");
     }
@@ -121,10 +141,10 @@ std::string CityParameters::toString() const
       << " minorRoadWidth=" << minorRoadWidth << " majorRoadWidth=" << majorRoadWidth
       << " majorRoadEvery=" << majorRoadEvery << " terrainResolution=" << terrainResolution
       << " terrainMargin=" << terrainMargin << " reliefAmplitude=" << reliefAmplitude
-      << " river=" << (river ? "true" : "false") << " riverWidth=" << riverWidth << " parkFraction=" << parkFraction
-      << " forestFraction=" << forestFraction << " parkTreesPerHectare=" << parkTreesPerHectare
-      << " forestTreesPerHectare=" << forestTreesPerHectare << " landmarks=" << landmarks
-      << " minFloors=" << minFloors << " maxFloors=" << maxFloors;
+      << " river=" << (river ? "true" : "false") << " riverWidth=" << riverWidth
+      << " parkFraction=" << parkFraction << " forestFraction=" << forestFraction
+      << " parkTreesPerHectare=" << parkTreesPerHectare << " forestTreesPerHectare=" << forestTreesPerHectare
+      << " landmarks=" << landmarks << " minFloors=" << minFloors << " maxFloors=" << maxFloors;
     return o.str();
 }
 

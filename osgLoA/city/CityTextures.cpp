@@ -91,8 +91,7 @@ void drawWindow(Canvas& c, int x0, int y0, int cw, int ch, double wFrac, double 
             c.set(x, y, g);
         }
     // Mullion.
-    if (ww > 8)
-        c.rect(wx + ww / 2, wy, wx + ww / 2 + 1, wy + wh, frame);
+    if (ww > 8) c.rect(wx + ww / 2, wy, wx + ww / 2 + 1, wy + wh, frame);
     c.rect(wx - 2, wy - 3, wx + ww + 2, wy - 1, {frame.r - 30, frame.g - 30, frame.b - 30});
 }
 } // namespace
@@ -101,9 +100,9 @@ const std::vector<FacadeStyle>& CityTextures::facadeStyles()
 {
     // Sizes mix powers of two and non-powers of two (192x160, 96x96, 320x200) on purpose.
     static const std::vector<FacadeStyle> styles = {
-        {"facade-brick", 256, 256, 4, 4, 3.6},   {"facade-plaster", 192, 160, 3, 2, 3.8},
-        {"facade-glass", 512, 256, 8, 4, 3.0},   {"facade-concrete", 128, 256, 2, 4, 3.4},
-        {"facade-stone", 96, 96, 1, 1, 4.0},     {"facade-modern", 320, 200, 5, 3, 3.2},
+        {"facade-brick", 256, 256, 4, 4, 3.6}, {"facade-plaster", 192, 160, 3, 2, 3.8},
+        {"facade-glass", 512, 256, 8, 4, 3.0}, {"facade-concrete", 128, 256, 2, 4, 3.4},
+        {"facade-stone", 96, 96, 1, 1, 4.0},   {"facade-modern", 320, 200, 5, 3, 3.2},
     };
     return styles;
 }
@@ -214,8 +213,9 @@ osg::ref_ptr<osg::Image> CityTextures::surface(const std::string& kind)
     }
     if (kind == "terrain" || kind == "park-grass" || kind == "forest-floor")
     {
-        const Rgb base = kind == "terrain" ? Rgb{118, 132, 78} : kind == "park-grass" ? Rgb{86, 150, 64}
-                                                                                      : Rgb{64, 84, 44};
+        const Rgb base = kind == "terrain"      ? Rgb{118, 132, 78}
+                         : kind == "park-grass" ? Rgb{86, 150, 64}
+                                                : Rgb{64, 84, 44};
         Canvas c(kind, 256, 256);
         const int seed = kind == "terrain" ? 81 : kind == "park-grass" ? 82 : 83;
         for (int y = 0; y < 256; ++y)
@@ -227,7 +227,8 @@ osg::ref_ptr<osg::Image> CityTextures::surface(const std::string& kind)
                                     noise(bx, by + 1, seed, 14) + noise(bx + 1, by + 1, seed, 14)) /
                                    2;
                 const int grain = noise(x, y, seed + 100, 12);
-                c.set(x, y, {base.r + blotch + grain, base.g + blotch + grain, base.b + blotch / 2 + grain / 2});
+                c.set(x, y,
+                      {base.r + blotch + grain, base.g + blotch + grain, base.b + blotch / 2 + grain / 2});
             }
         return c.image();
     }
@@ -237,7 +238,7 @@ osg::ref_ptr<osg::Image> CityTextures::surface(const std::string& kind)
         Canvas c(kind, 128, 128);
         c.fillNoise(major ? Rgb{62, 62, 66} : Rgb{84, 84, 86}, 10, major ? 91 : 92);
         // u runs across the road, v along it.
-        c.rect(0, 0, 3, 128, {150, 150, 150});     // kerbs
+        c.rect(0, 0, 3, 128, {150, 150, 150}); // kerbs
         c.rect(125, 0, 128, 128, {150, 150, 150});
         if (major)
         {

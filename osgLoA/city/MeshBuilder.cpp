@@ -33,8 +33,7 @@ void MeshBuilder::triangle(osg::Vec3 p0, osg::Vec3 p1, osg::Vec3 p2, osg::Vec2 t
                            const osg::Vec3* outwardFrom)
 {
     osg::Vec3 n = (p1 - p0) ^ (p2 - p0);
-    if (n.length2() <= 0.0f)
-        return; // degenerate: nothing to draw
+    if (n.length2() <= 0.0f) return; // degenerate: nothing to draw
     if (outwardFrom && n * ((p0 + p1 + p2) / 3.0f - *outwardFrom) < 0.0f)
     {
         std::swap(p1, p2);
@@ -49,13 +48,10 @@ void MeshBuilder::triangle(osg::Vec3 p0, osg::Vec3 p1, osg::Vec3 p2, osg::Vec2 t
 void MeshBuilder::quad(const osg::Vec3 p[4], const osg::Vec2 t[4], const osg::Vec3* outwardFrom)
 {
     osg::Vec3 n = (p[1] - p[0]) ^ (p[2] - p[0]);
-    if (n.length2() <= 0.0f)
-        n = (p[2] - p[0]) ^ (p[3] - p[0]);
-    if (n.length2() <= 0.0f)
-        return;
+    if (n.length2() <= 0.0f) n = (p[2] - p[0]) ^ (p[3] - p[0]);
+    if (n.length2() <= 0.0f) return;
     const bool flip = outwardFrom && n * ((p[0] + p[1] + p[2] + p[3]) / 4.0f - *outwardFrom) < 0.0f;
-    if (flip)
-        n = -n;
+    if (flip) n = -n;
     n.normalize();
     unsigned i[4];
     for (int k = 0; k < 4; ++k)

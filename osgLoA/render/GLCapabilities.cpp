@@ -1,4 +1,5 @@
 #include <osgLoA/render/GLCapabilities>
+#include <osgLoA/util/JsonString>
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -27,20 +28,6 @@ int glInt(GLenum name)
     return v;
 }
 
-std::string jsonEscape(const std::string& s)
-{
-    std::string out;
-    for (char c : s)
-    {
-        if (c == '"' || c == '\\')
-            out += '\\', out += c;
-        else if (static_cast<unsigned char>(c) < 0x20)
-            out += ' ';
-        else
-            out += c;
-    }
-    return out;
-}
 } // namespace
 
 void GLCapabilities::query()
@@ -69,8 +56,7 @@ void GLCapabilities::query()
         for (int i = 0; i < n; ++i)
         {
             const GLubyte* e = glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i));
-            if (e)
-                extensions.insert(reinterpret_cast<const char*>(e));
+            if (e) extensions.insert(reinterpret_cast<const char*>(e));
         }
     }
     else
@@ -134,7 +120,10 @@ bool GLCapabilities::isSoftwareRenderer() const
            r.find("swrast") != std::string::npos;
 }
 
-std::string GLCapabilities::summary() const { return renderer + " (" + vendor + "), GL " + version; }
+std::string GLCapabilities::summary() const
+{
+    return renderer + " (" + vendor + "), GL " + version;
+}
 
 std::string GLCapabilities::report() const
 {
@@ -149,8 +138,8 @@ std::string GLCapabilities::report() const
       << "colour attach.:  " << maxColorAttachments << ", draw buffers " << maxDrawBuffers << "\n"
       << "compute:         " << (computeShaders ? "yes" : "no") << ", invocations "
       << maxComputeWorkGroupInvocations << "\n"
-      << "SSBO:            " << (shaderStorageBuffers ? "yes" : "no") << ", block " << maxShaderStorageBlockSize
-      << " bytes\n"
+      << "SSBO:            " << (shaderStorageBuffers ? "yes" : "no") << ", block "
+      << maxShaderStorageBlockSize << " bytes\n"
       << "image ld/st:     " << (shaderImageLoadStore ? "yes" : "no") << "\n"
       << "bindless tex.:   " << (bindlessTextures ? "yes" : "no") << "\n"
       << "sample shading:  " << (sampleShading ? "yes" : "no") << "\n"

@@ -16,13 +16,11 @@ namespace
 {
 bool hasToken(const char* list, const char* token)
 {
-    if (!list)
-        return false;
+    if (!list) return false;
     std::istringstream in(list);
     std::string t;
     while (in >> t)
-        if (t == token)
-            return true;
+        if (t == token) return true;
     return false;
 }
 
@@ -30,29 +28,39 @@ const char* eglErrorName(EGLint e)
 {
     switch (e)
     {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    default: return "an unknown EGL error";
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+        return "EGL_BAD_SURFACE";
+    default:
+        return "an unknown EGL error";
     }
 }
 
 // Tries to initialize a display; returns EGL_NO_DISPLAY (terminated) on failure.
 EGLDisplay tryInitialize(EGLDisplay dpy)
 {
-    if (dpy == EGL_NO_DISPLAY)
-        return EGL_NO_DISPLAY;
+    if (dpy == EGL_NO_DISPLAY) return EGL_NO_DISPLAY;
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(dpy, &major, &minor))
-        return EGL_NO_DISPLAY;
+    if (!eglInitialize(dpy, &major, &minor)) return EGL_NO_DISPLAY;
     if (!eglBindAPI(EGL_OPENGL_API))
     {
         eglTerminate(dpy);
@@ -99,14 +107,14 @@ void HeadlessContext::createDisplayAndContext()
     if (getPlatformDisplay && hasToken(clientExts, "EGL_MESA_platform_surfaceless"))
     {
         dpy = tryInitialize(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
-        if (dpy != EGL_NO_DISPLAY)
-            _platform = "surfaceless";
+        if (dpy != EGL_NO_DISPLAY) _platform = "surfaceless";
         tried += "surfaceless ";
     }
     // 2. The EGL device platform: each enumerated device in turn (a GPU vendor's EGL).
     if (dpy == EGL_NO_DISPLAY && getPlatformDisplay && hasToken(clientExts, "EGL_EXT_platform_device"))
     {
-        auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        auto queryDevices =
+            reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
         if (queryDevices)
         {
             EGLDeviceEXT devices[16];
@@ -114,8 +122,7 @@ void HeadlessContext::createDisplayAndContext()
             if (queryDevices(16, devices, &n))
                 for (EGLint i = 0; i < n && dpy == EGL_NO_DISPLAY; ++i)
                     dpy = tryInitialize(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
-            if (dpy != EGL_NO_DISPLAY)
-                _platform = "device";
+            if (dpy != EGL_NO_DISPLAY) _platform = "device";
         }
         tried += "device ";
     }
@@ -123,8 +130,7 @@ void HeadlessContext::createDisplayAndContext()
     if (dpy == EGL_NO_DISPLAY)
     {
         dpy = tryInitialize(eglGetDisplay(EGL_DEFAULT_DISPLAY));
-        if (dpy != EGL_NO_DISPLAY)
-            _platform = "default";
+        if (dpy != EGL_NO_DISPLAY) _platform = "default";
         tried += "default";
     }
     if (dpy == EGL_NO_DISPLAY)
@@ -190,8 +196,9 @@ void HeadlessContext::createDisplayAndContext()
     {
         const EGLint err = eglGetError();
         destroy();
-        throw HeadlessContextError(std::string("EGL could not create a desktop OpenGL compatibility context (") +
-                                   eglErrorName(err) + ") on the " + _platform + " platform.");
+        throw HeadlessContextError(
+            std::string("EGL could not create a desktop OpenGL compatibility context (") + eglErrorName(err) +
+            ") on the " + _platform + " platform.");
     }
     _context = ctx;
 
@@ -202,17 +209,16 @@ void HeadlessContext::createDisplayAndContext()
         if (_surface == EGL_NO_SURFACE)
         {
             destroy();
-            throw HeadlessContextError("EGL has neither EGL_KHR_surfaceless_context nor a usable pbuffer surface.");
+            throw HeadlessContextError(
+                "EGL has neither EGL_KHR_surfaceless_context nor a usable pbuffer surface.");
         }
     }
 }
 
 bool HeadlessContext::realizeImplementation()
 {
-    if (_realized)
-        return true;
-    if (!makeCurrentImplementation())
-        return false;
+    if (_realized) return true;
+    if (!makeCurrentImplementation()) return false;
     _realized = true;
 
     _capabilities.query();
@@ -229,22 +235,26 @@ bool HeadlessContext::realizeImplementation()
     return true;
 }
 
-void HeadlessContext::closeImplementation() { _realized = false; }
+void HeadlessContext::closeImplementation()
+{
+    _realized = false;
+}
 
 bool HeadlessContext::makeCurrentImplementation()
 {
-    if (!_display || !_context)
-        return false;
-    return eglMakeCurrent(_display, _surface ? _surface : EGL_NO_SURFACE, _surface ? _surface : EGL_NO_SURFACE,
-                          _context) == EGL_TRUE;
+    if (!_display || !_context) return false;
+    return eglMakeCurrent(_display, _surface ? _surface : EGL_NO_SURFACE,
+                          _surface ? _surface : EGL_NO_SURFACE, _context) == EGL_TRUE;
 }
 
-bool HeadlessContext::makeContextCurrentImplementation(osg::GraphicsContext*) { return makeCurrentImplementation(); }
+bool HeadlessContext::makeContextCurrentImplementation(osg::GraphicsContext*)
+{
+    return makeCurrentImplementation();
+}
 
 bool HeadlessContext::releaseContextImplementation()
 {
-    if (!_display)
-        return false;
+    if (!_display) return false;
     return eglMakeCurrent(_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT) == EGL_TRUE;
 }
 
@@ -255,13 +265,10 @@ void HeadlessContext::swapBuffersImplementation()
 
 void HeadlessContext::destroy()
 {
-    if (!_display)
-        return;
+    if (!_display) return;
     eglMakeCurrent(_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    if (_surface)
-        eglDestroySurface(_display, _surface);
-    if (_context)
-        eglDestroyContext(_display, _context);
+    if (_surface) eglDestroySurface(_display, _surface);
+    if (_context) eglDestroyContext(_display, _context);
     // The display is shared per platform by EGL (eglTerminate would also kill other contexts
     // of this process on the same display), so it is left initialized.
     _surface = nullptr;

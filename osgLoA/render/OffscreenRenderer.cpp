@@ -17,8 +17,7 @@ namespace osgLoA
 
 double FrameTimes::median() const
 {
-    if (milliseconds.empty())
-        return 0.0;
+    if (milliseconds.empty()) return 0.0;
     std::vector<double> s = milliseconds;
     std::sort(s.begin(), s.end());
     const size_t n = s.size();
@@ -50,8 +49,7 @@ public:
     void operator()(osg::RenderInfo& renderInfo) const override
     {
         glFinish();
-        if (!_capture)
-            return;
+        if (!_capture) return;
         osg::State& state = *renderInfo.getState();
         state.setActiveTextureUnit(0);
         state.applyTextureAttribute(0, _texture.get());
@@ -81,8 +79,7 @@ public:
     void apply(osg::Drawable& drawable) override { add(drawable.getStateSet()); }
     void add(osg::StateSet* ss)
     {
-        if (!ss)
-            return;
+        if (!ss) return;
         if (auto* p = dynamic_cast<osg::Program*>(ss->getAttribute(osg::StateAttribute::PROGRAM)))
             programs.insert(p);
     }
@@ -95,16 +92,15 @@ OffscreenRenderer::OffscreenRenderer(const Settings& settings) : _settings(setti
     if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384)
         throw std::invalid_argument("image size " + std::to_string(settings.width) + "x" +
                                     std::to_string(settings.height) + " is outside 1x1 .. 16384x16384");
-    if (settings.samples < 0)
-        throw std::invalid_argument("sample count must be 0 or positive");
+    if (settings.samples < 0) throw std::invalid_argument("sample count must be 0 or positive");
 
     _context = new HeadlessContext(); // throws HeadlessContextError
-    if (!_context->realize())
-        throw HeadlessContextError("the EGL context could not be made current.");
+    if (!_context->realize()) throw HeadlessContextError("the EGL context could not be made current.");
     const GLCapabilities& caps = _context->getCapabilities();
     if (settings.samples > caps.maxSamples)
-        throw std::invalid_argument("--samples " + std::to_string(settings.samples) + " exceeds GL_MAX_SAMPLES = " +
-                                    std::to_string(caps.maxSamples) + " of " + caps.renderer);
+        throw std::invalid_argument("--samples " + std::to_string(settings.samples) +
+                                    " exceeds GL_MAX_SAMPLES = " + std::to_string(caps.maxSamples) + " of " +
+                                    caps.renderer);
     if (std::max(settings.width, settings.height) > caps.maxTextureSize)
         throw std::invalid_argument("image size exceeds GL_MAX_TEXTURE_SIZE = " +
                                     std::to_string(caps.maxTextureSize));
@@ -179,11 +175,9 @@ void OffscreenRenderer::setViewMatrixAsLookAt(const osg::Vec3d& eye, const osg::
 void OffscreenRenderer::frameScene()
 {
     osg::Node* scene = _viewer->getSceneData();
-    if (!scene)
-        return;
+    if (!scene) return;
     const osg::BoundingSphere bs = scene->getBound();
-    if (!bs.valid())
-        return;
+    if (!bs.valid()) return;
     const double fovyRad = osg::DegreesToRadians(_fovy);
     const double aspect = static_cast<double>(_settings.width) / _settings.height;
     const double halfFov = std::min(fovyRad, 2.0 * std::atan(std::tan(fovyRad / 2.0) * aspect)) / 2.0;
@@ -196,19 +190,16 @@ void OffscreenRenderer::frameScene()
 
 void OffscreenRenderer::realizeOnce()
 {
-    if (_realized)
-        return;
+    if (_realized) return;
     _viewer->realize();
     _realized = true;
 }
 
 void OffscreenRenderer::checkScenePrograms()
 {
-    if (_programsChecked)
-        return;
+    if (_programsChecked) return;
     CollectPrograms collect;
-    if (_viewer->getSceneData())
-        _viewer->getSceneData()->accept(collect);
+    if (_viewer->getSceneData()) _viewer->getSceneData()->accept(collect);
     std::vector<ShaderDiagnostic> all;
     if (!collect.programs.empty())
     {
@@ -220,8 +211,7 @@ void OffscreenRenderer::checkScenePrograms()
         }
         _context->releaseContext();
     }
-    if (!all.empty())
-        throw ShaderError(all);
+    if (!all.empty()) throw ShaderError(all);
     _programsChecked = true;
 }
 
@@ -241,8 +231,7 @@ osg::ref_ptr<osg::Image> OffscreenRenderer::renderImage()
     cb->_capture = true;
     cb->_image = nullptr;
     _viewer->frame();
-    if (!cb->_image.valid())
-        throw std::runtime_error("the frame was not drawn: no image could be read back");
+    if (!cb->_image.valid()) throw std::runtime_error("the frame was not drawn: no image could be read back");
     return cb->_image;
 }
 

@@ -14,10 +14,9 @@ namespace osgLoA
 
 std::string ShaderDiagnostic::message() const
 {
-    std::string head = stage == "link"
-                           ? "program '" + programName + "' failed to link"
-                           : "shader '" + shaderName + "' (" + stage + " stage) of program '" + programName +
-                                 "' failed to compile";
+    std::string head = stage == "link" ? "program '" + programName + "' failed to link"
+                                       : "shader '" + shaderName + "' (" + stage + " stage) of program '" +
+                                             programName + "' failed to compile";
     std::string body = log;
     while (!body.empty() && (body.back() == '\n' || body.back() == ' '))
         body.pop_back();
@@ -56,15 +55,13 @@ ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
     if (!path.empty())
     {
         osgDB::ifstream in(path.c_str(), std::ios::in | std::ios::binary);
-        if (!in)
-            throw std::invalid_argument("shader override '" + path + "' exists but cannot be read");
+        if (!in) throw std::invalid_argument("shader override '" + path + "' exists but cannot be read");
         std::ostringstream text;
         text << in.rdbuf();
         return {name, text.str(), path};
     }
     for (const detail::EmbeddedShader* e = detail::kEmbeddedShaders; e->name; ++e)
-        if (name == e->name)
-            return {name, e->source, "embedded"};
+        if (name == e->name) return {name, e->source, "embedded"};
     throw std::invalid_argument("no shader named '" + name + "' is embedded or on OSG_FILE_PATH");
 }
 
@@ -90,13 +87,20 @@ std::string ShaderLibrary::stageName(osg::Shader::Type type)
 {
     switch (type)
     {
-    case osg::Shader::VERTEX: return "vertex";
-    case osg::Shader::FRAGMENT: return "fragment";
-    case osg::Shader::GEOMETRY: return "geometry";
-    case osg::Shader::COMPUTE: return "compute";
-    case osg::Shader::TESSCONTROL: return "tessellation control";
-    case osg::Shader::TESSEVALUATION: return "tessellation evaluation";
-    default: return "unknown";
+    case osg::Shader::VERTEX:
+        return "vertex";
+    case osg::Shader::FRAGMENT:
+        return "fragment";
+    case osg::Shader::GEOMETRY:
+        return "geometry";
+    case osg::Shader::COMPUTE:
+        return "compute";
+    case osg::Shader::TESSCONTROL:
+        return "tessellation control";
+    case osg::Shader::TESSEVALUATION:
+        return "tessellation evaluation";
+    default:
+        return "unknown";
     }
 }
 
@@ -130,8 +134,7 @@ std::vector<ShaderDiagnostic> ShaderLibrary::check(const osg::Program& program, 
         out.push_back({program.getName(), "(link)", "link", "OSG created no program object in this context"});
         return out;
     }
-    if (pcp->isLinked())
-        return out;
+    if (pcp->isLinked()) return out;
     for (unsigned i = 0; i < program.getNumShaders(); ++i)
     {
         const osg::Shader* shader = program.getShader(i);

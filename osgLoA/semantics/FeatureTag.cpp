@@ -12,12 +12,18 @@ const char* toString(FeatureType type)
 {
     switch (type)
     {
-    case FeatureType::Building: return "building";
-    case FeatureType::Street: return "street";
-    case FeatureType::Water: return "water";
-    case FeatureType::Green: return "green";
-    case FeatureType::Terrain: return "terrain";
-    case FeatureType::Generic: break;
+    case FeatureType::Building:
+        return "building";
+    case FeatureType::Street:
+        return "street";
+    case FeatureType::Water:
+        return "water";
+    case FeatureType::Green:
+        return "green";
+    case FeatureType::Terrain:
+        return "terrain";
+    case FeatureType::Generic:
+        break;
     }
     return "generic";
 }
@@ -26,8 +32,8 @@ bool parseFeatureType(const std::string& name, FeatureType& type)
 {
     std::string n = name;
     std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return std::tolower(c); });
-    for (FeatureType t : {FeatureType::Generic, FeatureType::Building, FeatureType::Street, FeatureType::Water,
-                          FeatureType::Green, FeatureType::Terrain})
+    for (FeatureType t : {FeatureType::Generic, FeatureType::Building, FeatureType::Street,
+                          FeatureType::Water, FeatureType::Green, FeatureType::Terrain})
         if (n == toString(t))
         {
             type = t;
@@ -48,8 +54,7 @@ void FeatureTag::apply(osg::Node& node) const
     node.setUserValue(kId, id);
     node.setUserValue(kType, std::string(toString(type)));
     node.setUserValue(kSubtype, subtype);
-    if (landmark)
-        node.setUserValue(kLandmark, true);
+    if (landmark) node.setUserValue(kLandmark, true);
     node.setName(nodeName());
 }
 
@@ -57,12 +62,10 @@ bool FeatureTag::read(const osg::Node& node, FeatureTag& tag)
 {
     unsigned id = 0;
     std::string type;
-    if (!node.getUserValue(kId, id) || !node.getUserValue(kType, type))
-        return false;
+    if (!node.getUserValue(kId, id) || !node.getUserValue(kType, type)) return false;
     FeatureTag t;
     t.id = id;
-    if (!parseFeatureType(type, t.type))
-        t.type = FeatureType::Generic;
+    if (!parseFeatureType(type, t.type)) t.type = FeatureType::Generic;
     node.getUserValue(kSubtype, t.subtype);
     bool lm = false;
     t.landmark = node.getUserValue(kLandmark, lm) && lm;

@@ -17,8 +17,7 @@ namespace
 void removeTree(const std::string& dir)
 {
     for (const std::string& f : osgDB::getDirectoryContents(dir))
-        if (f != "." && f != "..")
-            std::remove(osgDB::concatPaths(dir, f).c_str());
+        if (f != "." && f != "..") std::remove(osgDB::concatPaths(dir, f).c_str());
     ::rmdir(dir.c_str());
 }
 } // namespace
@@ -39,7 +38,8 @@ void AtomicFile::write(const std::string& path, const std::function<bool(const s
         osgDB::concatPaths(dir.empty() ? "." : dir, "." + base + ".tmp-" + std::to_string(::getpid()));
     removeTree(tempDir);
     if (!osgDB::makeDirectory(tempDir))
-        throw std::runtime_error("cannot write '" + path + "': cannot create a temporary directory beside it");
+        throw std::runtime_error("cannot write '" + path +
+                                 "': cannot create a temporary directory beside it");
     const std::string temp = osgDB::concatPaths(tempDir, base);
     bool ok = false;
     try
@@ -56,7 +56,8 @@ void AtomicFile::write(const std::string& path, const std::function<bool(const s
         removeTree(tempDir);
         throw std::runtime_error("cannot write '" + path + "'");
     }
-    auto move = [&](const std::string& name) {
+    auto move = [&](const std::string& name)
+    {
         const std::string from = osgDB::concatPaths(tempDir, name);
         const std::string to = dir.empty() ? name : osgDB::concatPaths(dir, name);
         if (std::rename(from.c_str(), to.c_str()) != 0)
@@ -67,20 +68,21 @@ void AtomicFile::write(const std::string& path, const std::function<bool(const s
         }
     };
     for (const std::string& f : osgDB::getDirectoryContents(tempDir))
-        if (f != "." && f != ".." && f != base)
-            move(f);
+        if (f != "." && f != ".." && f != base) move(f);
     move(base);
     removeTree(tempDir);
 }
 
 void AtomicFile::writeText(const std::string& path, const std::string& text)
 {
-    write(path, [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        return static_cast<bool>(out);
-    });
+    write(path,
+          [&](const std::string& temp)
+          {
+              std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+              out << text;
+              out.close();
+              return static_cast<bool>(out);
+          });
 }
 
 void AtomicFile::writeNode(const std::string& path, const osg::Node& node, const osgDB::Options* options)

@@ -15,14 +15,18 @@ int channelsOf(const osg::Image& img)
         throw std::invalid_argument("image comparison needs 8-bit images");
     switch (img.getPixelFormat())
     {
-    case GL_RGB: return 3;
-    case GL_RGBA: return 4;
-    default: throw std::invalid_argument("image comparison needs RGB or RGBA images");
+    case GL_RGB:
+        return 3;
+    case GL_RGBA:
+        return 4;
+    default:
+        throw std::invalid_argument("image comparison needs RGB or RGBA images");
     }
 }
 } // namespace
 
-ImageComparison ImageComparison::compare(const osg::Image& actual, const osg::Image& expected, int failThreshold)
+ImageComparison ImageComparison::compare(const osg::Image& actual, const osg::Image& expected,
+                                         int failThreshold)
 {
     ImageComparison r;
     r.sizesMatch = actual.s() == expected.s() && actual.t() == expected.t();
@@ -54,8 +58,7 @@ ImageComparison ImageComparison::compare(const osg::Image& actual, const osg::Im
                 pd[x * 3 + c] = static_cast<unsigned char>(std::min(255, d * 4));
             }
             r.maxDifference = std::max(r.maxDifference, pixelMax);
-            if (pixelMax > failThreshold)
-                ++r.failingPixels;
+            if (pixelMax > failThreshold) ++r.failingPixels;
         }
     }
     const double pixels = static_cast<double>(w) * h;
@@ -66,8 +69,7 @@ ImageComparison ImageComparison::compare(const osg::Image& actual, const osg::Im
 
 std::string ImageComparison::summary() const
 {
-    if (!sizesMatch)
-        return "image sizes differ";
+    if (!sizesMatch) return "image sizes differ";
     std::ostringstream o;
     o << "max difference " << maxDifference << "/255, mean " << meanDifference << "/255, failing pixels "
       << failingPixels << " (" << failingFraction * 100.0 << "%)";

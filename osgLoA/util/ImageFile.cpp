@@ -11,8 +11,7 @@ namespace osgLoA
 osg::ref_ptr<osg::Image> ImageFile::read(const std::string& path)
 {
     auto in = OIIO::ImageInput::open(path);
-    if (!in)
-        throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
+    if (!in) throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
         throw std::runtime_error("image '" + path + "' is empty");
@@ -47,23 +46,33 @@ void ImageFile::write(const std::string& path, const osg::Image& image)
     switch (image.getPixelFormat())
     {
     case GL_LUMINANCE:
-    case GL_RED: channels = 1; break;
-    case GL_RGB: channels = 3; break;
-    case GL_RGBA: channels = 4; break;
-    default: throw std::runtime_error("cannot write '" + path + "': unsupported pixel format");
+    case GL_RED:
+        channels = 1;
+        break;
+    case GL_RGB:
+        channels = 3;
+        break;
+    case GL_RGBA:
+        channels = 4;
+        break;
+    default:
+        throw std::runtime_error("cannot write '" + path + "': unsupported pixel format");
     }
-    AtomicFile::write(path, [&](const std::string& temp) {
-        auto out = OIIO::ImageOutput::create(temp);
-        if (!out)
-            throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
-        OIIO::ImageSpec spec(image.s(), image.t(), channels, OIIO::TypeDesc::UINT8);
-        if (!out->open(temp, spec))
-            throw std::runtime_error("cannot write '" + path + "': " + out->geterror());
-        const OIIO::stride_t row = static_cast<OIIO::stride_t>(image.getRowStepInBytes());
-        const unsigned char* last = image.data(0, image.t() - 1);
-        const bool ok = out->write_image(OIIO::TypeDesc::UINT8, last, channels, -row) && out->close();
-        return ok;
-    });
+    AtomicFile::write(path,
+                      [&](const std::string& temp)
+                      {
+                          auto out = OIIO::ImageOutput::create(temp);
+                          if (!out)
+                              throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+                          OIIO::ImageSpec spec(image.s(), image.t(), channels, OIIO::TypeDesc::UINT8);
+                          if (!out->open(temp, spec))
+                              throw std::runtime_error("cannot write '" + path + "': " + out->geterror());
+                          const OIIO::stride_t row = static_cast<OIIO::stride_t>(image.getRowStepInBytes());
+                          const unsigned char* last = image.data(0, image.t() - 1);
+                          const bool ok =
+                              out->write_image(OIIO::TypeDesc::UINT8, last, channels, -row) && out->close();
+                          return ok;
+                      });
 }
 
 } // namespace osgLoA

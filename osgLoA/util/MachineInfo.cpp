@@ -27,8 +27,7 @@ MachineInfo MachineInfo::query()
             m.cpuModel = trim(l.substr(l.find(':') + 1));
             break;
         }
-    if (m.cpuModel.empty())
-        m.cpuModel = "unknown CPU";
+    if (m.cpuModel.empty()) m.cpuModel = "unknown CPU";
     m.cores = std::thread::hardware_concurrency();
     std::ifstream mem("/proc/meminfo");
     for (std::string l; std::getline(mem, l);)
@@ -41,8 +40,7 @@ MachineInfo MachineInfo::query()
         }
     std::ifstream os("/etc/os-release");
     for (std::string l; std::getline(os, l);)
-        if (l.rfind("PRETTY_NAME=", 0) == 0)
-            m.os = trim(l.substr(12));
+        if (l.rfind("PRETTY_NAME=", 0) == 0) m.os = trim(l.substr(12));
     return m;
 }
 
@@ -50,8 +48,7 @@ std::string MachineInfo::line(const std::string& glRenderer) const
 {
     std::ostringstream o;
     o << cpuModel << ", " << cores << " cores, " << memoryGiB << " GiB, " << (os.empty() ? "unknown OS" : os);
-    if (!glRenderer.empty())
-        o << "; GL: " << glRenderer;
+    if (!glRenderer.empty()) o << "; GL: " << glRenderer;
     return o.str();
 }
 

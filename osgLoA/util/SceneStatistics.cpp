@@ -33,13 +33,11 @@ public:
         {
             ++_s.features;
             ++_s.featuresByType[tag.type];
-            if (tag.landmark)
-                ++_s.landmarks;
+            if (tag.landmark) ++_s.landmarks;
             _typeStack.push_back(tag.type);
         }
         traverse(node);
-        if (tagged)
-            _typeStack.pop_back();
+        if (tagged) _typeStack.pop_back();
     }
 
     void apply(osg::Drawable& drawable) override
@@ -49,20 +47,16 @@ public:
         drawable.accept(tf);
         ++_s.drawables;
         _s.triangles += tf.count;
-        if (!_typeStack.empty())
-            _s.trianglesByType[_typeStack.back()] += tf.count;
+        if (!_typeStack.empty()) _s.trianglesByType[_typeStack.back()] += tf.count;
         if (auto* g = drawable.asGeometry())
-            if (g->getVertexArray())
-                _s.vertices += g->getVertexArray()->getNumElements();
+            if (g->getVertexArray()) _s.vertices += g->getVertexArray()->getNumElements();
     }
 
     void addStateSet(osg::StateSet* ss)
     {
-        if (!ss)
-            return;
+        if (!ss) return;
         for (unsigned u = 0; u < ss->getTextureAttributeList().size(); ++u)
-            if (auto* t = ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE))
-                _textures.insert(t);
+            if (auto* t = ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE)) _textures.insert(t);
     }
 
     std::set<const osg::StateAttribute*> _textures;
@@ -93,8 +87,7 @@ std::string SceneStatistics::summary() const
         o << sep << kv.second << " " << toString(kv.first);
         sep = ", ";
     }
-    if (landmarks)
-        o << " (" << landmarks << " landmarks)";
+    if (landmarks) o << " (" << landmarks << " landmarks)";
     return o.str();
 }
 

@@ -47,8 +47,7 @@ public:
                     text << line.substr(0, line.find('#')) << " ";
                 params.parse(text.str());
             }
-            if (options)
-                params.parse(options->getOptionString());
+            if (options) params.parse(options->getOptionString());
             params.validate();
             return osgLoA::CityGenerator(params).generate().get();
         }

@@ -26,12 +26,18 @@ std::string freshDirectory(const std::string& name)
     return dir;
 }
 
+void setFilePath(const std::string& value)
+{
+    ::setenv("OSG_FILE_PATH", value.c_str(), 1);
+    osgDB::Registry::instance()->getDataFilePathList().clear();
+    osgDB::Registry::instance()->initDataFilePathList();
+}
+
 int run(const std::string& command, std::string& output)
 {
     output.clear();
     FILE* p = popen((command + " 2>&1").c_str(), "r");
-    if (!p)
-        return -1;
+    if (!p) return -1;
     std::array<char, 4096> buf{};
     size_t n = 0;
     while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
@@ -46,10 +52,10 @@ std::string toOsgt(const osg::Node& node)
     static int counter = 0;
     const std::string dir = std::string(LOA_TEST_OUTPUT_DIR);
     osgDB::makeDirectory(dir);
-    const std::string path = dir + "/toOsgt-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".osgt";
+    const std::string path =
+        dir + "/toOsgt-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".osgt";
     osg::ref_ptr<osgDB::Options> opts = new osgDB::Options("WriteImageHint=IncludeData");
-    if (!osgDB::writeNodeFile(node, path, opts.get()))
-        return std::string();
+    if (!osgDB::writeNodeFile(node, path, opts.get())) return std::string();
     std::ifstream in(path);
     std::ostringstream text;
     text << in.rdbuf();
@@ -74,8 +80,7 @@ void saveFailure(const std::string& name, const osg::Image& actual, const osg::I
     const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/failures";
     osgDB::makeDirectory(dir);
     osgLoA::ImageFile::write(dir + "/" + name + "-actual.png", actual);
-    if (difference)
-        osgLoA::ImageFile::write(dir + "/" + name + "-diff.png", *difference);
+    if (difference) osgLoA::ImageFile::write(dir + "/" + name + "-diff.png", *difference);
     std::fprintf(stderr, "saved %s/%s-actual.png and -diff.png\n", dir.c_str(), name.c_str());
 }
 

@@ -13,6 +13,9 @@ namespace loatest
 /** A fresh empty directory under the build's test-output folder. */
 std::string freshDirectory(const std::string& name);
 
+/** Sets OSG_FILE_PATH and makes osgDB re-read it. */
+void setFilePath(const std::string& value);
+
 /** Runs a shell command; returns its exit status and fills stdout+stderr. */
 int run(const std::string& command, std::string& output);
 
