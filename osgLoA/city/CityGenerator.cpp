@@ -424,23 +424,28 @@ public:
             }
     }
 
+    /** A square prism trunk of half-width r and height h standing on base. */
+    static void squareTrunk(MeshBuilder& trunk, const osg::Vec3& base, float r, float h)
+    {
+        const osg::Vec3 axis = base + osg::Vec3(0, 0, h / 2);
+        for (int k = 0; k < 4; ++k)
+        {
+            const double a0 = kPi / 2 * k, a1 = kPi / 2 * (k + 1);
+            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * r, static_cast<float>(std::sin(a0)) * r, 0);
+            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * r, static_cast<float>(std::sin(a1)) * r, 0);
+            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, h),
+                                    base + d0 + osg::Vec3(0, 0, h)};
+            const osg::Vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            trunk.quad(q, t, &axis);
+        }
+    }
+
     void coniferTree(MeshBuilder& crown, MeshBuilder& trunk, osg::Vec3 base, double h, Random& rng) const
     {
         const float H = static_cast<float>(h);
         const float tr = 0.025f * H, th = 0.22f * H, cr = 0.2f * H;
         const osg::Vec3 centre = base + osg::Vec3(0, 0, 0.5f * H);
-        for (int k = 0; k < 4; ++k) // square trunk
-        {
-            const double a0 = kPi / 2 * k, a1 = kPi / 2 * (k + 1);
-            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr,
-                               0);
-            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr,
-                               0);
-            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th),
-                                    base + d0 + osg::Vec3(0, 0, th)};
-            const osg::Vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-            trunk.quad(q, t, &centre);
-        }
+        squareTrunk(trunk, base, tr, th);
         const float shade = static_cast<float>(rng.uniform(0.85, 1.1));
         crown.color = osg::Vec4(0.16f * shade, 0.36f * shade, 0.20f * shade, 1.0f);
         const osg::Vec3 apex = base + osg::Vec3(0, 0, H);
@@ -460,19 +465,7 @@ public:
     {
         const float H = static_cast<float>(h);
         const float tr = 0.03f * H, th = 0.5f * H;
-        for (int k = 0; k < 4; ++k)
-        {
-            const double a0 = kPi / 2 * k, a1 = kPi / 2 * (k + 1);
-            const osg::Vec3 d0(static_cast<float>(std::cos(a0)) * tr, static_cast<float>(std::sin(a0)) * tr,
-                               0);
-            const osg::Vec3 d1(static_cast<float>(std::cos(a1)) * tr, static_cast<float>(std::sin(a1)) * tr,
-                               0);
-            const osg::Vec3 q[4] = {base + d0, base + d1, base + d1 + osg::Vec3(0, 0, th),
-                                    base + d0 + osg::Vec3(0, 0, th)};
-            const osg::Vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-            const osg::Vec3 mid = base + osg::Vec3(0, 0, th / 2);
-            trunk.quad(q, t, &mid);
-        }
+        squareTrunk(trunk, base, tr, th);
         // Icosahedral crown, squashed a little.
         const float shade = static_cast<float>(rng.uniform(0.85, 1.15));
         crown.color = osg::Vec4(0.30f * shade, 0.50f * shade, 0.18f * shade, 1.0f);
