@@ -52,6 +52,27 @@ osg::ref_ptr<OffscreenRenderer> renderer()
     r->getCamera()->setViewMatrix(osg::Matrix::identity());
     return r;
 }
+/** Renders the plain quad with loa_plain.frag.glsl overridden by fragmentSource and returns
+ *  the ShaderError it must throw (a failed test when it renders instead). */
+ShaderError renderWithBrokenFragment(const std::string& name, const std::string& fragmentSource)
+{
+    const std::string dir = loatest::freshDirectory(name);
+    std::ofstream(dir + "/loa_plain.frag.glsl") << fragmentSource;
+    loatest::setFilePath(dir);
+    auto r = renderer();
+    r->setSceneData(quadWithPlainProgram().get());
+    loatest::setFilePath("");
+    try
+    {
+        r->renderImage();
+    }
+    catch (const ShaderError& e)
+    {
+        return e;
+    }
+    ADD_FAILURE() << name << ": a broken program rendered an image";
+    return ShaderError({});
+}
 } // namespace
 
 TEST(ShaderLibraryGLTest, TheEmbeddedPlainProgramLinksAndShades)
@@ -69,52 +90,26 @@ TEST(ShaderLibraryGLTest, TheEmbeddedPlainProgramLinksAndShades)
 
 TEST(ShaderLibraryGLTest, ACompileErrorNamesShaderStageAndLogAndStopsTheRender)
 {
-    const std::string dir = loatest::freshDirectory("ShaderCompileError");
-    std::ofstream(dir + "/loa_plain.frag.glsl")
-        << "#version 450 compatibility\nvoid main() { this is not glsl; }\n";
-    loatest::setFilePath(dir);
-    auto r = renderer();
-    r->setSceneData(quadWithPlainProgram().get());
-    loatest::setFilePath("");
-    try
-    {
-        r->renderImage();
-        FAIL() << "a broken fragment shader rendered an image";
-    }
-    catch (const ShaderError& e)
-    {
-        ASSERT_EQ(e.diagnostics().size(), 1u);
-        const ShaderDiagnostic& d = e.diagnostics()[0];
-        EXPECT_EQ(d.programName, "plain");
-        EXPECT_EQ(d.shaderName, "loa_plain.frag.glsl");
-        EXPECT_EQ(d.stage, "fragment");
-        std::string log = d.log;
-        std::transform(log.begin(), log.end(), log.begin(), ::tolower);
-        EXPECT_NE(log.find("error"), std::string::npos) << d.log;
-        EXPECT_NE(std::string(e.what()).find("loa_plain.frag.glsl"), std::string::npos);
-    }
+    const ShaderError e = renderWithBrokenFragment(
+        "ShaderCompileError", "#version 450 compatibility\nvoid main() { this is not glsl; }\n");
+    ASSERT_EQ(e.diagnostics().size(), 1u);
+    const ShaderDiagnostic& d = e.diagnostics()[0];
+    EXPECT_EQ(d.programName, "plain");
+    EXPECT_EQ(d.shaderName, "loa_plain.frag.glsl");
+    EXPECT_EQ(d.stage, "fragment");
+    std::string log = d.log;
+    std::transform(log.begin(), log.end(), log.begin(), ::tolower);
+    EXPECT_NE(log.find("error"), std::string::npos) << d.log;
+    EXPECT_NE(std::string(e.what()).find("loa_plain.frag.glsl"), std::string::npos);
 }
 
 TEST(ShaderLibraryGLTest, ALinkErrorIsReportedAsSuch)
 {
     // Both stages compile, but the fragment stage reads an input no stage writes.
-    const std::string dir = loatest::freshDirectory("ShaderLinkError");
-    std::ofstream(dir + "/loa_plain.frag.glsl")
-        << "#version 450 compatibility\nin vec4 loa_neverWritten;\nout vec4 c;\nvoid main() { c = "
-           "loa_neverWritten; }\n";
-    loatest::setFilePath(dir);
-    auto r = renderer();
-    r->setSceneData(quadWithPlainProgram().get());
-    loatest::setFilePath("");
-    try
-    {
-        r->renderImage();
-        FAIL() << "a program that cannot link rendered an image";
-    }
-    catch (const ShaderError& e)
-    {
-        ASSERT_EQ(e.diagnostics().size(), 1u);
-        EXPECT_EQ(e.diagnostics()[0].stage, "link");
-        EXPECT_FALSE(e.diagnostics()[0].log.empty());
-    }
+    const ShaderError e = renderWithBrokenFragment(
+        "ShaderLinkError", "#version 450 compatibility\nin vec4 loa_neverWritten;\nout vec4 c;\n"
+                           "void main() { c = loa_neverWritten; }\n");
+    ASSERT_EQ(e.diagnostics().size(), 1u);
+    EXPECT_EQ(e.diagnostics()[0].stage, "link");
+    EXPECT_FALSE(e.diagnostics()[0].log.empty());
 }

@@ -6,9 +6,8 @@
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageFile>
 #include <osgLoA/util/SceneStatistics>
+#include <osgLoA/util/StateSetVisitor>
 
-#include <osg/NodeVisitor>
-#include <osg/Texture>
 #include <osgDB/FileNameUtils>
 #include <osgDB/Registry>
 
@@ -34,28 +33,6 @@ options:
 exit status: 0 written, 1 write failed, 2 bad arguments.
 )";
 
-/** Collects the distinct texture images of a scene. */
-class CollectImages : public osg::NodeVisitor
-{
-public:
-    CollectImages() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
-    void apply(osg::Node& n) override
-    {
-        add(n.getStateSet());
-        traverse(n);
-    }
-    void apply(osg::Drawable& d) override { add(d.getStateSet()); }
-    void add(osg::StateSet* ss)
-    {
-        if (!ss) return;
-        for (unsigned u = 0; u < ss->getTextureAttributeList().size(); ++u)
-            if (auto* t =
-                    dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE)))
-                for (unsigned i = 0; i < t->getNumImages(); ++i)
-                    if (t->getImage(i)) images.insert(t->getImage(i));
-    }
-    std::set<osg::Image*> images;
-};
 } // namespace
 
 int main(int argc, char** argv)
@@ -112,14 +89,13 @@ int main(int argc, char** argv)
             const bool native = ext == "osgb" || ext == "osgt" || ext == "osgx" || ext == "ive";
             if (native) options->setOptionString(ext == "ive" ? "" : "WriteImageHint=IncludeData");
             options->setPluginStringData("fileNameOnly", "true");
-            CollectImages images;
-            scene->accept(images);
+            const std::set<osg::Image*> images = osgLoA::StateSetVisitor::textureImages(*scene);
             osgLoA::AtomicFile::write(
                 output,
                 [&](const std::string& temp)
                 {
                     if (!native) // formats that reference textures by file name get them beside the model
-                        for (osg::Image* img : images.images)
+                        for (osg::Image* img : images)
                             osgLoA::ImageFile::write(
                                 osgDB::concatPaths(osgDB::getFilePath(temp), img->getFileName()), *img);
                     return osgDB::Registry::instance()->writeNode(*scene, temp, options.get()).success();

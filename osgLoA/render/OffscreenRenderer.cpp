@@ -1,5 +1,6 @@
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/util/StateSetVisitor>
 
 #include <osg/ComputeBoundsVisitor>
 #include <osg/GLExtensions>
@@ -66,25 +67,6 @@ public:
     osg::ref_ptr<osg::Texture2D> _texture;
 };
 
-/** Collects every osg::Program reachable from a scene's state sets. */
-class CollectPrograms : public osg::NodeVisitor
-{
-public:
-    CollectPrograms() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
-    void apply(osg::Node& node) override
-    {
-        add(node.getStateSet());
-        traverse(node);
-    }
-    void apply(osg::Drawable& drawable) override { add(drawable.getStateSet()); }
-    void add(osg::StateSet* ss)
-    {
-        if (!ss) return;
-        if (auto* p = dynamic_cast<osg::Program*>(ss->getAttribute(osg::StateAttribute::PROGRAM)))
-            programs.insert(p);
-    }
-    std::set<osg::Program*> programs;
-};
 } // namespace
 
 OffscreenRenderer::OffscreenRenderer(const Settings& settings) : _settings(settings)
@@ -198,13 +180,14 @@ void OffscreenRenderer::realizeOnce()
 void OffscreenRenderer::checkScenePrograms()
 {
     if (_programsChecked) return;
-    CollectPrograms collect;
-    if (_viewer->getSceneData()) _viewer->getSceneData()->accept(collect);
+    const std::set<osg::Program*> programs = _viewer->getSceneData()
+                                                 ? StateSetVisitor::programs(*_viewer->getSceneData())
+                                                 : std::set<osg::Program*>();
     std::vector<ShaderDiagnostic> all;
-    if (!collect.programs.empty())
+    if (!programs.empty())
     {
         _context->makeCurrent();
-        for (osg::Program* p : collect.programs)
+        for (osg::Program* p : programs)
         {
             auto d = ShaderLibrary::check(*p, *_context->getState());
             all.insert(all.end(), d.begin(), d.end());
