@@ -3,7 +3,7 @@
 
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/city/CityTextures>
-#include <osgLoA/semantics/FeatureTag>
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/util/SceneStatistics>
 
 #include <osg/NodeVisitor>
@@ -22,16 +22,15 @@ struct Features : osg::NodeVisitor
     Features() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
     void apply(osg::Node& n) override
     {
-        FeatureTag t;
-        if (FeatureTag::read(n, t)) tags.push_back(t);
+        if (const Feature* f = Feature::get(n)) tags.push_back(f);
         traverse(n);
     }
-    std::vector<FeatureTag> tags;
+    std::vector<osg::ref_ptr<const Feature>> tags;
     int count(FeatureType type, const std::string& subtype = "*") const
     {
         int c = 0;
         for (const auto& t : tags)
-            c += t.type == type && (subtype == "*" || t.subtype == subtype);
+            c += t->getType() == type && (subtype == "*" || t->getSubType() == subtype);
         return c;
     }
 };
@@ -84,7 +83,7 @@ TEST(CityGeneratorTest, PerTypeFeatureCountsWithoutRiver)
     EXPECT_EQ(f.count(FeatureType::Generic), 0);
     int landmarks = 0;
     for (const auto& t : f.tags)
-        landmarks += t.landmark;
+        landmarks += t->getLandmark();
     EXPECT_EQ(landmarks, 2);
 }
 
@@ -106,11 +105,11 @@ TEST(CityGeneratorTest, FeatureIdsAreUniqueAndContiguous)
     CityGenerator(CityParameters::small()).generate()->accept(f);
     std::set<unsigned> ids;
     for (const auto& t : f.tags)
-        ids.insert(t.id);
+        ids.insert(t->getId());
     ASSERT_EQ(ids.size(), f.tags.size());
     EXPECT_EQ(*ids.begin(), 1u);
     EXPECT_EQ(*ids.rbegin(), f.tags.size());
-    EXPECT_EQ(f.tags.front().type, FeatureType::Terrain); // terrain gets id 1
+    EXPECT_EQ(f.tags.front()->getType(), FeatureType::Terrain); // terrain gets id 1
 }
 
 TEST(CityGeneratorTest, DefaultCityIsWithinTheTriangleBudget)

@@ -1,5 +1,5 @@
 // The .loacity pseudo-loader, as osgviewer and osgconv use it.
-#include <osgLoA/semantics/FeatureTag>
+#include <osgLoA/semantics/Feature>
 #include <osgLoA/util/SceneStatistics>
 
 #include <osgDB/ReadFile>

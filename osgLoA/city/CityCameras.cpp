@@ -1,5 +1,5 @@
 #include <osgLoA/city/CityCameras>
-#include <osgLoA/semantics/FeatureTag>
+#include <osgLoA/semantics/Feature>
 
 #include <osg/ComputeBoundsVisitor>
 #include <osgUtil/IntersectionVisitor>
@@ -20,15 +20,14 @@ public:
     FocusBounds() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
     void apply(osg::Node& node) override
     {
-        FeatureTag tag;
-        if (FeatureTag::read(node, tag))
+        if (const Feature* f = Feature::get(node))
         {
-            if (tag.type == FeatureType::Building || tag.type == FeatureType::Street)
+            if (f->getType() == FeatureType::Building || f->getType() == FeatureType::Street)
             {
                 osg::ComputeBoundsVisitor cbv;
                 node.accept(cbv);
                 focus.expandBy(cbv.getBoundingBox());
-                if (tag.type == FeatureType::Street && tag.subtype == "major")
+                if (f->getType() == FeatureType::Street && f->getSubType() == "major")
                     majorStreets.push_back(cbv.getBoundingBox());
             }
             return; // features do not nest

@@ -1,6 +1,6 @@
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/city/CityTextures>
-#include <osgLoA/semantics/FeatureTag>
+#include <osgLoA/semantics/Feature>
 
 #include "MeshBuilder.h"
 
@@ -280,12 +280,11 @@ public:
     osg::ref_ptr<osg::Group> feature(FeatureType type, const std::string& subtype, bool landmark = false)
     {
         osg::ref_ptr<osg::Group> group = new osg::Group;
-        FeatureTag tag;
-        tag.id = nextId++;
-        tag.type = type;
-        tag.subtype = subtype;
-        tag.landmark = landmark;
-        tag.apply(*group);
+        osg::ref_ptr<Feature> f = new Feature(nextId++, type, subtype, Feature::MODEL_DATA);
+        f->setLandmark(landmark);
+        if (landmark) f->setInterest(1.0f); // the generator builds landmarks on purpose
+        f->setSourceType("loacity");
+        Feature::attach(*group, f.get());
         return group;
     }
 

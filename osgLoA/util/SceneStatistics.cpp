@@ -1,3 +1,4 @@
+#include <osgLoA/semantics/Feature>
 #include <osgLoA/util/SceneStatistics>
 
 #include <osg/Geometry>
@@ -27,14 +28,14 @@ public:
     void apply(osg::Node& node) override
     {
         addStateSet(node.getStateSet());
-        FeatureTag tag;
-        const bool tagged = FeatureTag::read(node, tag);
+        const Feature* f = Feature::get(node);
+        const bool tagged = f != nullptr;
         if (tagged)
         {
             ++_s.features;
-            ++_s.featuresByType[tag.type];
-            if (tag.landmark) ++_s.landmarks;
-            _typeStack.push_back(tag.type);
+            ++_s.featuresByType[f->getType()];
+            if (f->getLandmark()) ++_s.landmarks;
+            _typeStack.push_back(f->getType());
         }
         traverse(node);
         if (tagged) _typeStack.pop_back();

@@ -1,0 +1,133 @@
+#include <osgLoA/semantics/FeatureIndex>
+
+#include <osg/ComputeBoundsVisitor>
+#include <osg/NodeVisitor>
+#include <osg/Transform>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+namespace osgLoA
+{
+
+namespace
+{
+class CollectFeatures : public osg::NodeVisitor
+{
+public:
+    explicit CollectFeatures(std::vector<FeatureIndex::Entry>& out)
+        : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), _out(out)
+    {
+        setNodeMaskOverride(~0u);
+    }
+
+    void apply(osg::Node& node) override
+    {
+        Feature* f = Feature::get(node);
+        if (f)
+        {
+            FeatureIndex::Entry e;
+            e.feature = f;
+            e.node = &node;
+            e.path = getNodePath();
+            e.parent = _stack.empty() ? -1 : _stack.back();
+            _stack.push_back(static_cast<int>(_out.size()));
+            _out.push_back(e);
+        }
+        traverse(node);
+        if (f) _stack.pop_back();
+    }
+
+private:
+    std::vector<FeatureIndex::Entry>& _out;
+    std::vector<int> _stack;
+};
+} // namespace
+
+void FeatureIndex::build(osg::Node& root)
+{
+    _entries.clear();
+    CollectFeatures c(_entries);
+    root.accept(c);
+}
+
+const FeatureIndex::Entry* FeatureIndex::find(unsigned id) const
+{
+    for (const Entry& e : _entries)
+        if (e.feature->getId() == id) return &e;
+    return nullptr;
+}
+
+unsigned FeatureIndex::numberUnnumbered()
+{
+    unsigned maxId = 0;
+    for (const Entry& e : _entries)
+        maxId = std::max(maxId, e.feature->getId());
+    unsigned n = 0;
+    for (Entry& e : _entries)
+        if (e.feature->getId() == 0)
+        {
+            e.feature->setId(++maxId);
+            ++n;
+        }
+    return n;
+}
+
+std::vector<unsigned> FeatureIndex::duplicateIds() const
+{
+    std::set<unsigned> seen, dup;
+    for (const Entry& e : _entries)
+        if (!seen.insert(e.feature->getId()).second) dup.insert(e.feature->getId());
+    return std::vector<unsigned>(dup.begin(), dup.end());
+}
+
+void FeatureIndex::updateBounds()
+{
+    for (Entry& e : _entries)
+    {
+        osg::ref_ptr<osg::Node> node;
+        if (!e.node.lock(node)) continue;
+        osg::NodePath parentPath(e.path.begin(), e.path.end() - 1);
+        osg::ComputeBoundsVisitor cbv;
+        cbv.setNodeMaskOverride(~0u);
+        osg::Matrix toWorld = osg::computeLocalToWorld(parentPath);
+        cbv.pushMatrix(toWorld);
+        node->accept(cbv);
+        const osg::BoundingBox& b = cbv.getBoundingBox();
+        e.feature->setBound(osg::BoundingBoxf(b._min, b._max));
+    }
+}
+
+unsigned FeatureIndex::Counts::get(FeatureType t) const
+{
+    auto it = byType.find(t);
+    return it == byType.end() ? 0u : it->second;
+}
+
+std::string FeatureIndex::Counts::toJson() const
+{
+    std::ostringstream s;
+    s << "{";
+    for (FeatureType t : kFeatureTypes)
+        s << "\"" << toString(t) << "\": " << get(t) << ", ";
+    s << "\"landmarks\": " << landmarks << "}";
+    return s.str();
+}
+
+FeatureIndex::Counts FeatureIndex::counts(bool topLevelOnly) const
+{
+    Counts c;
+    for (FeatureType t : kFeatureTypes)
+        c.byType[t] = 0;
+    for (const Entry& e : _entries)
+    {
+        if (topLevelOnly && e.parent >= 0) continue;
+        ++c.byType[e.feature->getType()];
+        ++c.total;
+        if (e.feature->getLandmark()) ++c.landmarks;
+    }
+    return c;
+}
+
+} // namespace osgLoA
