@@ -1,0 +1,37 @@
+// Serializer wrapper for osgLoA::ClassificationRule.
+#include <osgLoA/semantics/ClassificationRule>
+
+#include <osgDB/ObjectWrapper>
+#include <osgDB/Serializer>
+
+// clang-format off
+REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRule, new osgLoA::ClassificationRule, osgLoA::ClassificationRule,
+                        "osg::Object osgLoA::ClassificationRule")
+{
+    BEGIN_ENUM_SERIALIZER(Field, ANY);
+        ADD_ENUM_VALUE(NODE_NAME);
+        ADD_ENUM_VALUE(NODE_DESCRIPTION);
+        ADD_ENUM_VALUE(USER_VALUE);
+        ADD_ENUM_VALUE(MATERIAL_NAME);
+        ADD_ENUM_VALUE(TEXTURE_FILE);
+        ADD_ENUM_VALUE(IMPORTER_SEMANTICS);
+        ADD_ENUM_VALUE(ANY);
+    END_ENUM_SERIALIZER();
+    ADD_STRING_SERIALIZER(UserValueKey, "");
+    BEGIN_ENUM_SERIALIZER(Syntax, GLOB);
+        ADD_ENUM_VALUE(GLOB);
+        ADD_ENUM_VALUE(REGEX);
+    END_ENUM_SERIALIZER();
+    ADD_STRING_SERIALIZER(Pattern, "");
+    ADD_BOOL_SERIALIZER(CaseSensitive, false);
+    {
+        typedef osgDB::EnumSerializer<MyClass, osgLoA::FeatureType, void> TypeSerializer;
+        osg::ref_ptr<TypeSerializer> serializer =
+            new TypeSerializer("Type", osgLoA::FeatureType::Generic, &MyClass::getType, &MyClass::setType);
+        for (osgLoA::FeatureType t : osgLoA::kFeatureTypes)
+            serializer->add(osgLoA::toString(t), t);
+        wrapper->addSerializer(serializer.get(), osgDB::BaseSerializer::RW_ENUM);
+    }
+    ADD_STRING_SERIALIZER(SubType, "");
+}
+// clang-format on
