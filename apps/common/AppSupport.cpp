@@ -1,5 +1,6 @@
 #include "AppSupport.h"
 
+#include <osgLoA/Version>
 #include <osgLoA/city/CityCameras>
 
 #include <osgDB/FileNameUtils>
@@ -117,7 +118,14 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 
 osg::ref_ptr<osg::Node> loadModel(const std::string& path)
 {
-    if (!osgDB::fileExists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
+    if (!osgDB::fileExists(path))
+    {
+        // Pseudo-loaders (demo.loacity) read names that are not files.
+        osgDB::ReaderWriter::ReadResult rr =
+            osgDB::Registry::instance()->readNode(path, osgDB::Registry::instance()->getOptions());
+        if (rr.validNode()) return rr.getNode();
+        throw std::runtime_error("cannot read '" + path + "': no such file");
+    }
     if (osgDB::fileType(path) == osgDB::DIRECTORY)
         throw std::runtime_error("cannot read '" + path + "': it is a directory");
     const std::string ext = osgDB::getLowerCaseFileExtension(path);
@@ -170,6 +178,54 @@ void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice
     }
     else
         renderer.frameScene();
+}
+
+const char* const kCameraHelp =
+    R"(  --camera NAME         a named view: street, oblique, top, horizon (computed from the
+                        model's buildings and streets; see docs/demo-city.md)
+  --eye X,Y,Z --center X,Y,Z [--up X,Y,Z]
+                        an explicit look-at camera (up defaults to 0,0,1)
+                        (no camera option: frame the model's bounding sphere)
+)";
+
+void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help)
+{
+    if (a == "--help" || a == "-h")
+    {
+        std::cout << help;
+        std::exit(kOk);
+    }
+    if (a == "--version")
+    {
+        std::cout << tool << " " << osgLoAGetVersion() << "\n";
+        std::exit(kOk);
+    }
+}
+
+bool parseCameraOption(const std::string& a, Args& args, CameraChoice& c)
+{
+    if (a == "--camera")
+    {
+        c.name = args.value(a);
+        if (!osgLoA::CityCameras::isName(c.name))
+            throw UsageError("unknown camera '" + c.name + "' (known: street, oblique, top, horizon)");
+    }
+    else if (a == "--eye")
+        c.eye = parseVec3(a, args.value(a)), c.haveEye = true;
+    else if (a == "--center")
+        c.center = parseVec3(a, args.value(a)), c.haveCenter = true;
+    else if (a == "--up")
+        c.up = parseVec3(a, args.value(a)), c.haveUp = true;
+    else
+        return false;
+    return true;
+}
+
+void checkCameraOptions(const CameraChoice& c)
+{
+    if (c.haveEye != c.haveCenter) throw UsageError("--eye and --center go together");
+    if (c.haveUp && !c.haveEye) throw UsageError("--up needs --eye and --center");
+    if (!c.name.empty() && c.haveEye) throw UsageError("--camera and --eye/--center exclude each other");
 }
 
 } // namespace loa

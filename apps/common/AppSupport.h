@@ -71,6 +71,15 @@ struct CameraChoice
     std::string describe() const;
 };
 void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice);
+/** Consumes --camera NAME, --eye, --center, --up (option `a` already taken from args);
+ *  false when `a` is none of them. */
+bool parseCameraOption(const std::string& a, Args& args, CameraChoice& choice);
+/** Throws UsageError for contradictory camera options. */
+void checkCameraOptions(const CameraChoice& choice);
+/** --help/-h prints help, --version "<tool> <version>"; both exit 0. Returns for any other word. */
+void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help);
+/** The help lines for the camera options. */
+extern const char* const kCameraHelp;
 
 } // namespace loa
 

@@ -28,12 +28,8 @@ Renders MODEL (any file osgDB reads: .osgb, .osgt, .obj, ...) headless through E
 Without MODEL it renders the built-in demo city.
 
 options:
-  --camera NAME         a named view: street, oblique, top, horizon (computed from the
-                        model's buildings and streets; see docs/demo-city.md)
-  --eye X,Y,Z --center X,Y,Z [--up X,Y,Z]
-                        an explicit look-at camera (up defaults to 0,0,1)
-                        (no camera option: frame the model's bounding sphere)
-  --size WxH            image size in pixels (default 1280x720)
+)";
+const char* kHelpOptions = R"(  --size WxH            image size in pixels (default 1280x720)
   --samples N           multisample anti-aliasing with N samples (default 0; at most
                         GL_MAX_SAMPLES, which is 4 on llvmpipe)
   --frames N            render N timed frames after one warm-up frame and report the
@@ -68,29 +64,9 @@ Options parse(int argc, char** argv)
     while (!args.empty())
     {
         const std::string a = args.next();
-        if (a == "--help" || a == "-h")
-        {
-            std::cout << kHelp;
-            std::exit(loa::kOk);
-        }
-        else if (a == "--version")
-        {
-            std::cout << "loa-render " << osgLoAGetVersion() << "\n";
-            std::exit(loa::kOk);
-        }
-        else if (a == "--camera")
-        {
-            o.camera.name = args.value(a);
-            if (!osgLoA::CityCameras::isName(o.camera.name))
-                throw loa::UsageError("unknown camera '" + o.camera.name +
-                                      "' (known: street, oblique, top, horizon)");
-        }
-        else if (a == "--eye")
-            o.camera.eye = loa::parseVec3(a, args.value(a)), o.camera.haveEye = true;
-        else if (a == "--center")
-            o.camera.center = loa::parseVec3(a, args.value(a)), o.camera.haveCenter = true;
-        else if (a == "--up")
-            o.camera.up = loa::parseVec3(a, args.value(a)), o.camera.haveUp = true;
+        loa::exitOnHelpOrVersion(a, "loa-render", std::string(kHelp) + loa::kCameraHelp + kHelpOptions);
+        if (loa::parseCameraOption(a, args, o.camera))
+            continue;
         else if (a == "--size")
             loa::parseSize(args.value(a), o.width, o.height);
         else if (a == "--samples")
@@ -118,10 +94,7 @@ Options parse(int argc, char** argv)
         else
             throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
     }
-    if (o.camera.haveEye != o.camera.haveCenter) throw loa::UsageError("--eye and --center go together");
-    if (o.camera.haveUp && !o.camera.haveEye) throw loa::UsageError("--up needs --eye and --center");
-    if (!o.camera.name.empty() && o.camera.haveEye)
-        throw loa::UsageError("--camera and --eye/--center exclude each other");
+    loa::checkCameraOptions(o.camera);
     if (osgDB::getLowerCaseFileExtension(o.out) != "png")
         throw loa::UsageError("--out '" + o.out + "' must name a .png file");
     return o;

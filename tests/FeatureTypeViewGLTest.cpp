@@ -1,0 +1,60 @@
+// The debug view coloured by feature type (paper 004 Figure 3B), rendered by loa-classify
+// --image: every type of the demo city shows in its colour, and nothing shows as generic.
+#include "support/TestSupport.h"
+
+#include <osgLoA/semantics/FeatureTypeView>
+#include <osgLoA/util/ImageFile>
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+using namespace osgLoA;
+
+TEST(FeatureTypeViewGLTest, EveryDemoCityTypeShowsInItsColour)
+{
+    const std::string dir = loatest::freshDirectory("FeatureTypeViewGLTest");
+    std::string out;
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0)
+        << out;
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/city.osgb' --image '" + dir +
+                               "/types.png' --size 240x180 --camera top",
+                           out),
+              0)
+        << out;
+    osg::ref_ptr<osg::Image> img = ImageFile::read(dir + "/types.png");
+    ASSERT_TRUE(img.valid());
+    // Lighting scales a colour; its chromaticity (r, g, b divided by their sum) stays. Each
+    // pixel goes to the palette colour of nearest chromaticity, if within 0.04 (the palette's
+    // closest pair, street grey and terrain sand, are 0.09 apart); the sky is excluded the same way.
+    std::map<std::string, osg::Vec4> palette;
+    for (FeatureType t : kFeatureTypes)
+        palette[toString(t)] = FeatureTypeView::colour(t);
+    palette["landmark"] = FeatureTypeView::landmarkColour();
+    palette["sky"] = osg::Vec4(0.62f, 0.75f, 0.90f, 1.0f);
+    auto chroma = [](const osg::Vec4& c)
+    {
+        const float s = c.r() + c.g() + c.b();
+        return s > 0.0f ? osg::Vec3(c.r(), c.g(), c.b()) / s : osg::Vec3();
+    };
+    std::map<std::string, unsigned> count;
+    for (int t = 0; t < img->t(); ++t)
+        for (int s = 0; s < img->s(); ++s)
+        {
+            const osg::Vec3 c = chroma(img->getColor(s, t));
+            std::string best;
+            float bestD = 0.04f;
+            for (const auto& kv : palette)
+            {
+                const float d = (chroma(kv.second) - c).length();
+                if (d < bestD) bestD = d, best = kv.first;
+            }
+            ++count[best.empty() ? "other" : best];
+        }
+    const float n = static_cast<float>(img->s() * img->t());
+    for (const char* t : {"building", "street", "water", "green", "terrain", "landmark"})
+        EXPECT_GT(count[t] / n, 0.002f) << t << ": " << count[t] << " pixels";
+    EXPECT_EQ(count["generic"], 0u);
+    EXPECT_LT(count["other"] / n, 0.05f)
+        << "pixels in no palette colour: textures or vertex colours show through";
+}
