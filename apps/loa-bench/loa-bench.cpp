@@ -5,14 +5,23 @@
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageCompare>
 #include <osgLoA/util/MachineInfo>
 #include <osgLoA/util/SceneStatistics>
 
+#include <osg/Geometry>
+#include <osg/Texture>
 #include <osg/Uniform>
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -35,6 +44,15 @@ cases:
                  ratio against) and the project's loa_plain GLSL program
   msaa           the demo city at 1280x720 with 0, 2 and 4 samples: frame time against the
                  mean and max per-pixel error to a 4x-MSAA, 2x2-supersampled reference
+  import         load + classify time (ms per repetition, features per second) for the demo
+                 city (generated, .osgb, .obj) and the real files found in
+                 data/cache/python-osmnx-doc/ (scripts/fetch-test-data), ../shared/data/osm/
+                 and ../shared/data/cityjson/ (paths relative to the working directory)
+  classify-appearance
+                 the appearance-grouping fallback alone: the demo city stripped of features
+                 and of every name but one feature in five; classify time against the
+                 fraction of drawables typed wrongly (error_mean) and left generic
+                 (error_max), for appearance thresholds 0 (same texture only) to 40 Delta E
 
 options:
   --case NAME    run this case (repeatable; default: all)
@@ -143,6 +161,175 @@ std::vector<Row> msaa(unsigned frames, std::string& renderer)
     return rows;
 }
 
+double msSince(std::chrono::steady_clock::time_point t0)
+{
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<std::string> importInputs(const std::string& tmpDir)
+{
+    std::vector<std::string> inputs = {"demo.loacity"};
+    osg::ref_ptr<osg::Node> city = demoCity();
+    for (const char* ext : {"osgb", "obj"})
+    {
+        const std::string path = tmpDir + "/demo-city." + ext;
+        osgLoA::AtomicFile::writeNode(path, *city);
+        inputs.push_back(path);
+    }
+    for (const char* dir : {"data/cache/python-osmnx-doc", "../shared/data/osm", "../shared/data/cityjson",
+                            "../shared/data/cityjson/rotterdam"})
+    {
+        osgDB::DirectoryContents files = osgDB::getSortedDirectoryContents(dir);
+        for (const std::string& f : files)
+        {
+            const std::string lower = osgDB::convertToLowerCase(f);
+            const bool osm = lower.size() > 4 && (lower.find(".osm") != std::string::npos);
+            const bool cityjson = osgDB::getLowerCaseFileExtension(lower) == "json";
+            if (osm || cityjson) inputs.push_back(std::string(dir) + "/" + f);
+        }
+    }
+    return inputs;
+}
+
+std::vector<Row> import(unsigned frames, std::string& renderer)
+{
+    renderer = "";
+    const std::string tmpDir = "out/bench-import";
+    std::vector<Row> rows;
+    for (const std::string& input : importInputs(tmpDir))
+    {
+        Row row;
+        std::size_t features = 0;
+        double load = 0.0, classify = 0.0;
+        for (unsigned i = 0; i < frames; ++i)
+        {
+            const auto t0 = std::chrono::steady_clock::now();
+            osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(input);
+            const double l = msSince(t0);
+            if (!scene)
+            {
+                std::cerr << "  " << input << ": cannot be read, skipped\n";
+                break;
+            }
+            const auto t1 = std::chrono::steady_clock::now();
+            osgLoA::FeatureClassifier().classify(*scene);
+            const double c = msSince(t1);
+            features = osgLoA::FeatureIndex(*scene).size();
+            row.times.milliseconds.push_back(l + c);
+            load += l;
+            classify += c;
+        }
+        if (row.times.milliseconds.empty()) continue;
+        const double n = static_cast<double>(row.times.milliseconds.size());
+        std::ostringstream p;
+        p << std::fixed << std::setprecision(1) << osgDB::getSimpleFileName(input) << " features=" << features
+          << " load_ms=" << load / n << " classify_ms=" << classify / n << std::setprecision(0)
+          << " features_per_s=" << features / (row.times.median() / 1000.0);
+        row.parameters = p.str();
+        rows.push_back(row);
+        std::cerr << "  " << row.parameters << "\n";
+    }
+    return rows;
+}
+
+// The demo city with its features and names removed, except every fifth feature, which keeps
+// its name so that rules classify it; everything else can only be typed by appearance.
+struct StrippedCity
+{
+    osg::ref_ptr<osg::Node> scene;
+    std::map<osg::Drawable*, osgLoA::FeatureType> truth;
+};
+
+StrippedCity strippedCity()
+{
+    StrippedCity s;
+    s.scene = osgLoA::CityGenerator(osgLoA::CityParameters()).generate();
+    struct Strip : osg::NodeVisitor
+    {
+        Strip() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        osgLoA::FeatureType type = osgLoA::FeatureType::Generic;
+        bool keepNames = false;
+        StrippedCity* out = nullptr;
+        unsigned n = 0;
+        void apply(osg::Node& node) override
+        {
+            const osgLoA::FeatureType saved = type;
+            const bool savedKeep = keepNames;
+            if (const osgLoA::Feature* f = osgLoA::Feature::get(node))
+            {
+                type = f->getType();
+                keepNames = (n++ % 5) == 0;
+                osgLoA::Feature::detach(node);
+            }
+            if (osg::Drawable* d = node.asDrawable()) out->truth[d] = type;
+            if (!keepNames)
+            {
+                node.setName("");
+                if (osg::StateSet* ss = node.getStateSet())
+                    for (unsigned u = 0; u < ss->getTextureAttributeList().size(); ++u)
+                        if (auto* t = dynamic_cast<osg::Texture*>(
+                                ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE)))
+                            for (unsigned i = 0; i < t->getNumImages(); ++i)
+                                if (osg::Image* img = t->getImage(i))
+                                {
+                                    img->setName("");
+                                    img->setFileName("");
+                                }
+            }
+            traverse(node);
+            type = saved;
+            keepNames = savedKeep;
+        }
+    } strip;
+    strip.out = &s;
+    s.scene->accept(strip);
+    return s;
+}
+
+std::vector<Row> classifyAppearance(unsigned frames, std::string& renderer)
+{
+    renderer = "";
+    std::vector<Row> rows;
+    for (float threshold : {0.0f, 5.0f, 10.0f, 20.0f, 40.0f})
+    {
+        Row row;
+        unsigned wrong = 0, generic = 0, total = 0;
+        for (unsigned i = 0; i < frames; ++i)
+        {
+            StrippedCity city = strippedCity();
+            osg::ref_ptr<osgLoA::ClassificationRuleSet> rules =
+                osgLoA::ClassificationRuleSet::createDefault();
+            rules->setAppearanceThreshold(threshold);
+            const auto t0 = std::chrono::steady_clock::now();
+            osgLoA::FeatureClassifier(rules.get()).classify(*city.scene);
+            row.times.milliseconds.push_back(msSince(t0));
+            wrong = generic = total = 0;
+            for (const auto& kv : city.truth)
+            {
+                const osgLoA::Feature* f = nullptr;
+                for (osg::Node* p = kv.first; p && !f; p = p->getNumParents() ? p->getParent(0) : nullptr)
+                    f = osgLoA::Feature::get(*p);
+                ++total;
+                if (!f || f->getType() == osgLoA::FeatureType::Generic)
+                    ++generic;
+                else if (f->getType() != kv.second)
+                    ++wrong;
+            }
+        }
+        std::ostringstream p, m, x;
+        p << "threshold=" << threshold << " drawables=" << total;
+        m << std::setprecision(4) << static_cast<double>(wrong) / total;
+        x << std::setprecision(4) << static_cast<double>(generic) / total;
+        row.parameters = p.str();
+        row.errorMean = m.str();
+        row.errorMax = x.str();
+        rows.push_back(row);
+        std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, wrong "
+                  << row.errorMean << ", generic " << row.errorMax << "\n";
+    }
+    return rows;
+}
+
 std::string csvQuote(const std::string& s)
 {
     std::string q = "\"";
@@ -155,7 +342,10 @@ std::string csvQuote(const std::string& s)
 int main(int argc, char** argv)
 {
     using CaseFn = std::function<std::vector<Row>(unsigned, std::string&)>;
-    const std::vector<std::pair<std::string, CaseFn>> cases = {{"plain-render", plainRender}, {"msaa", msaa}};
+    const std::vector<std::pair<std::string, CaseFn>> cases = {{"plain-render", plainRender},
+                                                               {"msaa", msaa},
+                                                               {"import", import},
+                                                               {"classify-appearance", classifyAppearance}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int
@@ -205,7 +395,7 @@ int main(int argc, char** argv)
                 std::cerr << "case " << c.first << " (" << frames << " frames per configuration)\n";
                 std::string renderer;
                 const std::vector<Row> rows = c.second(frames, renderer);
-                const std::string line = machine.line(renderer);
+                const std::string line = machine.line(renderer.empty() ? "none (CPU only)" : renderer);
                 std::ostringstream csv;
                 csv << std::fixed << std::setprecision(3)
                     << "case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine\n";

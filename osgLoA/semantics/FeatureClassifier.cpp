@@ -103,7 +103,7 @@ std::vector<std::string> FeatureClassifier::strings(const osg::Node& node, Class
     if (field == F::NODE_DESCRIPTION || field == F::ANY)
         for (const std::string& d : node.getDescriptions())
             out.push_back(d);
-    if (field == F::USER_VALUE || field == F::ANY)
+    if (field == F::USER_VALUE) // not part of ANY: user values are arbitrary data
         if (const osg::UserDataContainer* udc = node.getUserDataContainer())
             for (unsigned i = 0; i < udc->getNumUserObjects(); ++i)
             {

@@ -1,6 +1,8 @@
 // Serializer wrapper for osgLoA::ClassificationRule.
 #include <osgLoA/semantics/ClassificationRule>
 
+#include "FeatureTypeSerializer.h"
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -24,14 +26,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRule, new osgLoA::ClassificationRul
     END_ENUM_SERIALIZER();
     ADD_STRING_SERIALIZER(Pattern, "");
     ADD_BOOL_SERIALIZER(CaseSensitive, false);
-    {
-        typedef osgDB::EnumSerializer<MyClass, osgLoA::FeatureType, void> TypeSerializer;
-        osg::ref_ptr<TypeSerializer> serializer =
-            new TypeSerializer("Type", osgLoA::FeatureType::Generic, &MyClass::getType, &MyClass::setType);
-        for (osgLoA::FeatureType t : osgLoA::kFeatureTypes)
-            serializer->add(osgLoA::toString(t), t);
-        wrapper->addSerializer(serializer.get(), osgDB::BaseSerializer::RW_ENUM);
-    }
+    osgLoA::addFeatureTypeSerializer<MyClass>(wrapper, "Type", &MyClass::getType, &MyClass::setType);
     ADD_STRING_SERIALIZER(SubType, "");
 }
 // clang-format on

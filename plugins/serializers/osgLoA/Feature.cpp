@@ -1,6 +1,8 @@
 // Serializer wrapper for osgLoA::Feature (.osgt/.osgb/.osgx).
 #include <osgLoA/semantics/Feature>
 
+#include "FeatureTypeSerializer.h"
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -8,14 +10,7 @@
 REGISTER_OBJECT_WRAPPER(osgLoA_Feature, new osgLoA::Feature, osgLoA::Feature, "osg::Object osgLoA::Feature")
 {
     ADD_UINT_SERIALIZER(Id, 0u);
-    {
-        typedef osgDB::EnumSerializer<MyClass, osgLoA::FeatureType, void> TypeSerializer;
-        osg::ref_ptr<TypeSerializer> serializer =
-            new TypeSerializer("Type", osgLoA::FeatureType::Generic, &MyClass::getType, &MyClass::setType);
-        for (osgLoA::FeatureType t : osgLoA::kFeatureTypes)
-            serializer->add(osgLoA::toString(t), t);
-        wrapper->addSerializer(serializer.get(), osgDB::BaseSerializer::RW_ENUM);
-    }
+    osgLoA::addFeatureTypeSerializer<MyClass>(wrapper, "Type", &MyClass::getType, &MyClass::setType);
     ADD_STRING_SERIALIZER(SubType, "");
     BEGIN_ENUM_SERIALIZER(Source, UNCLASSIFIED);
         ADD_ENUM_VALUE(UNCLASSIFIED);
