@@ -7,13 +7,18 @@
 #include <osgLoA/semantics/ClassificationRuleSet>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureIndex>
+#include <osgLoA/semantics/FeatureInterest>
 #include <osgLoA/semantics/FeatureTypeView>
+#include <osgLoA/semantics/ViewpointEntropy>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageFile>
 
 #include <osgDB/FileNameUtils>
+#include <osgDB/ReadFile>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 
@@ -30,6 +35,13 @@ options:
   --rules FILE          a rule set (.osgt/.osgb/.osgx holding an osgLoA::ClassificationRuleSet)
                         instead of the built-in default rules
   --override            let the rules override types given by the model data
+  --interest FILE       interest values per type and per feature id and the landmark threshold
+                        (an osgLoA::FeatureInterest in .osgt/.osgb; docs/landmarks.md)
+  --landmark-threshold T
+                        features with interest >= T (in [0,1]) are landmarks (default: the
+                        landmarks the model data flags)
+  --best-views          compute each landmark's best view by viewpoint entropy (headless GL)
+                        and print it
   --json                print one JSON object: {"building": n, "street": n, "water": n,
                         "green": n, "terrain": n, "generic": n, "landmarks": n}
   --image FILE.png      render the debug view coloured by feature type: building red, street
@@ -49,8 +61,9 @@ exit status: 0 done, 1 the model, the rules or an output could not be read or wr
 
 struct Options
 {
-    std::string model, rules, image, save, writeRules;
-    bool json = false, override_ = false;
+    std::string model, rules, image, save, writeRules, interest;
+    bool json = false, override_ = false, bestViews = false;
+    float landmarkThreshold = -1.0f;
     int width = 1024, height = 768;
     loa::CameraChoice camera;
 };
@@ -69,6 +82,18 @@ Options parse(int argc, char** argv)
             o.rules = args.value(a);
         else if (a == "--override")
             o.override_ = true;
+        else if (a == "--interest")
+            o.interest = args.value(a);
+        else if (a == "--landmark-threshold")
+        {
+            const std::string v = args.value(a);
+            char* end = nullptr;
+            o.landmarkThreshold = std::strtof(v.c_str(), &end);
+            if (end == v.c_str() || *end || !(o.landmarkThreshold >= 0.0f && o.landmarkThreshold <= 1.0f))
+                throw loa::UsageError("--landmark-threshold '" + v + "' must be a number in [0,1]");
+        }
+        else if (a == "--best-views")
+            o.bestViews = true;
         else if (a == "--json")
             o.json = true;
         else if (a == "--image")
@@ -112,6 +137,26 @@ int run(const Options& o)
     const osgLoA::FeatureClassifier::Report report = osgLoA::FeatureClassifier(rules.get()).classify(*scene);
     const auto t2 = std::chrono::steady_clock::now();
     osgLoA::FeatureIndex index(*scene);
+    if (!o.interest.empty() || o.landmarkThreshold >= 0.0f)
+    {
+        osg::ref_ptr<osgLoA::FeatureInterest> fi = new osgLoA::FeatureInterest;
+        fi->setKeepExistingInterest(true);
+        if (!o.interest.empty())
+        {
+            osg::ref_ptr<osg::Object> obj = osgDB::readRefObjectFile(o.interest);
+            fi = dynamic_cast<osgLoA::FeatureInterest*>(obj.get());
+            if (!fi)
+                throw std::runtime_error("cannot read interest values from '" + o.interest + "'" +
+                                         (obj ? std::string(": it holds a ") + obj->className() +
+                                                    ", not an osgLoA::FeatureInterest"
+                                              : std::string(": no such file or not readable")));
+        }
+        if (o.landmarkThreshold >= 0.0f) fi->setLandmarkThreshold(o.landmarkThreshold);
+        fi->apply(index);
+    }
+    std::vector<osgLoA::ViewpointEntropy::Result> views;
+    if (o.bestViews)
+        osg::ref_ptr<osgLoA::ViewpointEntropy>(new osgLoA::ViewpointEntropy)->computeBestViews(index, &views);
     const osgLoA::FeatureIndex::Counts counts = index.counts();
 
     if (o.json)
@@ -127,6 +172,20 @@ int run(const Options& o)
                   << "classifier: " << report.summary() << "\n"
                   << std::fixed << std::setprecision(1) << "loaded in " << ms(t0, t1) << " ms, classified in "
                   << ms(t1, t2) << " ms\n";
+        if (o.bestViews)
+            for (const auto& e : index.entries())
+                if (e.feature->getLandmark())
+                {
+                    const osg::Vec3& d = e.feature->getBestViewDirection();
+                    std::cout << "landmark " << e.feature->getId() << " (" << e.feature->getSourceId()
+                              << "): ";
+                    if (e.feature->hasBestView())
+                        std::cout << std::setprecision(3) << "best view from direction " << d.x() << ","
+                                  << d.y() << "," << d.z() << " (azimuth " << std::setprecision(0)
+                                  << osg::RadiansToDegrees(std::atan2(d.y(), d.x())) << " deg)\n";
+                    else
+                        std::cout << "no best view (no geometry)\n";
+                }
         const std::vector<unsigned> dup = index.duplicateIds();
         if (!dup.empty()) std::cout << "warning: " << dup.size() << " feature ids occur more than once\n";
     }

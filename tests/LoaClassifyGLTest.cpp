@@ -1,5 +1,5 @@
-// The debug view coloured by feature type (paper 004 Figure 3B), rendered by loa-classify
-// --image: every type of the demo city shows in its colour, and nothing shows as generic.
+// loa-classify with GL: the debug view coloured by feature type (paper 004 Figure 3B), rendered by --image,
+// shows every demo-city type in its colour and nothing as generic; --best-views gives every landmark one.
 #include "support/TestSupport.h"
 
 #include <osgLoA/semantics/FeatureTypeView>
@@ -11,9 +11,9 @@
 
 using namespace osgLoA;
 
-TEST(FeatureTypeViewGLTest, EveryDemoCityTypeShowsInItsColour)
+TEST(LoaClassifyGLTest, EveryDemoCityTypeShowsInItsColour)
 {
-    const std::string dir = loatest::freshDirectory("FeatureTypeViewGLTest");
+    const std::string dir = loatest::freshDirectory("LoaClassifyGLTest");
     std::string out;
     ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0)
         << out;
@@ -57,4 +57,27 @@ TEST(FeatureTypeViewGLTest, EveryDemoCityTypeShowsInItsColour)
     EXPECT_EQ(count["generic"], 0u);
     EXPECT_LT(count["other"] / n, 0.05f)
         << "pixels in no palette colour: textures or vertex colours show through";
+}
+
+TEST(LoaClassifyGLTest, BestViewsForEveryLandmarkAndThresholdsSelectLandmarks)
+{
+    const std::string dir = loatest::freshDirectory("LoaClassifyGLTestViews");
+    std::string out;
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0) << out;
+    const std::string classify = std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/city.osgb'";
+    ASSERT_EQ(loatest::run(classify + " --best-views", out), 0) << out;
+    std::size_t views = 0;
+    for (std::size_t at = out.find("best view from direction"); at != std::string::npos;
+         at = out.find("best view from direction", at + 1))
+        ++views;
+    EXPECT_EQ(views, 2u) << out; // the small city has two landmarks
+    // The generator gives landmarks interest 1 and others 0: any threshold in (0,1] keeps two,
+    // threshold 0 makes every feature a landmark.
+    ASSERT_EQ(loatest::run(classify + " --landmark-threshold 0.9 --json", out), 0) << out;
+    EXPECT_NE(out.find("\"landmarks\": 2}"), std::string::npos) << out;
+    ASSERT_EQ(loatest::run(classify + " --landmark-threshold 0 --json", out), 0) << out;
+    EXPECT_EQ(out.find("\"landmarks\": 2}"), std::string::npos) << out;
+    EXPECT_EQ(loatest::run(classify + " --landmark-threshold 2", out), 2) << out;
+    EXPECT_EQ(loatest::run(classify + " --interest '" + dir + "/city.osgb'", out), 1) << out;
+    EXPECT_NE(out.find("not an osgLoA::FeatureInterest"), std::string::npos) << out;
 }
