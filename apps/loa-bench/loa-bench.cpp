@@ -357,12 +357,8 @@ int main(int argc, char** argv)
             while (!args.empty())
             {
                 const std::string a = args.next();
-                if (a == "--help" || a == "-h")
-                {
-                    std::cout << kHelp;
-                    return loa::kOk;
-                }
-                else if (a == "--list")
+                loa::exitOnHelpOrVersion(a, "loa-bench", kHelp);
+                if (a == "--list")
                 {
                     for (const auto& c : cases)
                         std::cout << c.first << "\n";

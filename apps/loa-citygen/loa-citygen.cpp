@@ -47,12 +47,8 @@ int main(int argc, char** argv)
             while (!args.empty())
             {
                 const std::string a = args.next();
-                if (a == "--help" || a == "-h")
-                {
-                    std::cout << kHelp;
-                    return loa::kOk;
-                }
-                else if (a == "--city")
+                loa::exitOnHelpOrVersion(a, "loa-citygen", kHelp);
+                if (a == "--city")
                     city += " " + args.value(a);
                 else if (a == "--seed")
                     city += " seed=" + std::to_string(loa::parseCount(a, args.value(a), 4294967295u));

@@ -32,11 +32,11 @@ void Feature::setInterest(float interest)
     _interest = interest < 0.0f ? 0.0f : (interest > 1.0f ? 1.0f : interest);
 }
 
-std::string Feature::defaultNodeName() const
+std::string Feature::defaultNodeName(FeatureType type, unsigned id)
 {
-    std::string t = osgLoA::toString(_type);
+    std::string t = osgLoA::toString(type);
     t[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(t[0])));
-    return t + "_" + std::to_string(_id);
+    return t + "_" + std::to_string(id);
 }
 
 Feature* Feature::attach(osg::Node& node, Feature* feature)

@@ -150,7 +150,7 @@ void FeatureClassifier::apply(osg::Node& node)
     traverse(node);
 }
 
-int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes, const Feature* feature) const
+int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes) const
 {
     const auto& rules = _rules->getRules();
     for (std::size_t r = 0; r < rules.size(); ++r)
@@ -161,13 +161,6 @@ int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes, co
             for (const std::string& s : strings(*n, rule.getField(), rule.getUserValueKey()))
                 if (rule.matches(s)) return static_cast<int>(r);
         }
-        // A feature created for a drawable has no node of its own yet; its importer class is
-        // the existing feature's.
-        if (feature && Feature::get(*nodes.front()) != feature &&
-            (rule.getField() == ClassificationRule::IMPORTER_SEMANTICS ||
-             rule.getField() == ClassificationRule::ANY) &&
-            !feature->getSourceType().empty() && rule.matches(feature->getSourceType()))
-            return static_cast<int>(r);
     }
     return -1;
 }
@@ -213,12 +206,12 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
         }
         SubtreeNodes sub;
         u.node->accept(sub);
-        int match = matchLevel(sub.nodes, &f);
+        int match = matchLevel(sub.nodes);
         for (std::size_t k = u.path.size() - 1; match < 0 && k-- > 0;)
         {
             const osg::Node* a = u.path[k];
             auto it = ancestorMatch.find(a);
-            if (it == ancestorMatch.end()) it = ancestorMatch.emplace(a, matchLevel({a}, nullptr)).first;
+            if (it == ancestorMatch.end()) it = ancestorMatch.emplace(a, matchLevel({a})).first;
             match = it->second;
         }
         if (match >= 0)
