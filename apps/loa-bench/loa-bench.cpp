@@ -1,5 +1,6 @@
 // loa-bench: named benchmark cases; each writes CSV rows to docs/bench/<case>.csv.
 #include "../common/AppSupport.h"
+#include "BenchCase.h"
 
 #include <osgLoA/Version>
 #include <osgLoA/city/CityGenerator>
@@ -61,12 +62,6 @@ options:
   --list         list the cases and exit
 )";
 
-struct Row
-{
-    std::string parameters;
-    osgLoA::FrameTimes times;
-    std::string errorMean, errorMax;
-};
 
 osg::ref_ptr<osg::Node> demoCity()
 {

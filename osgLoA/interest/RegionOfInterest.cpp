@@ -1,0 +1,152 @@
+// RegionOfInterest: exact distances to circles, routes and polygons on the ground plane.
+#include <osgLoA/interest/RegionOfInterest>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace osgLoA
+{
+
+namespace
+{
+double segmentDistance(const osg::Vec2d& p, const osg::Vec2d& a, const osg::Vec2d& b)
+{
+    const osg::Vec2d ab = b - a;
+    const double len2 = ab.length2();
+    double t = len2 > 0.0 ? ((p - a) * ab) / len2 : 0.0;
+    t = std::min(1.0, std::max(0.0, t));
+    return (p - (a + ab * t)).length();
+}
+
+// Even-odd rule: a ray towards +x crosses the ring an odd number of times from inside.
+bool insideRing(const osg::Vec2d& p, const RegionOfInterest::Vertices& v)
+{
+    bool inside = false;
+    for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+    {
+        if ((v[i].y() > p.y()) != (v[j].y() > p.y()))
+        {
+            const double x = v[j].x() + (p.y() - v[j].y()) * (v[i].x() - v[j].x()) / (v[i].y() - v[j].y());
+            if (p.x() < x) inside = !inside;
+        }
+    }
+    return inside;
+}
+
+std::size_t minimumVertices(RegionOfInterest::Shape s)
+{
+    return s == RegionOfInterest::POLYGON ? 3 : s == RegionOfInterest::POLYLINE ? 2 : 1;
+}
+} // namespace
+
+RegionOfInterest::RegionOfInterest() = default;
+
+RegionOfInterest::RegionOfInterest(Shape shape, const Vertices& vertices, double radius)
+    : _shape(shape), _vertices(vertices)
+{
+    setRadius(radius);
+}
+
+RegionOfInterest::RegionOfInterest(const RegionOfInterest& other, const osg::CopyOp& copyop)
+    : osg::Object(other, copyop), _shape(other._shape), _vertices(other._vertices), _radius(other._radius)
+{
+}
+
+void RegionOfInterest::setRadius(double radius)
+{
+    if (!std::isfinite(radius) || radius < 0.0)
+        throw std::invalid_argument("region of interest radius " + std::to_string(radius) +
+                                    " must be finite and not negative");
+    _radius = radius;
+}
+
+double RegionOfInterest::distance(const osg::Vec2d& p) const
+{
+    if (_vertices.size() < minimumVertices(_shape)) return std::numeric_limits<double>::infinity();
+    double d = std::numeric_limits<double>::infinity();
+    switch (_shape)
+    {
+    case CIRCLES:
+        for (const osg::Vec2d& c : _vertices)
+            d = std::min(d, (p - c).length());
+        break;
+    case POLYLINE:
+        for (std::size_t i = 0; i + 1 < _vertices.size(); ++i)
+            d = std::min(d, segmentDistance(p, _vertices[i], _vertices[i + 1]));
+        break;
+    case POLYGON:
+        if (insideRing(p, _vertices)) return 0.0;
+        for (std::size_t i = 0; i < _vertices.size(); ++i)
+            d = std::min(d, segmentDistance(p, _vertices[i], _vertices[(i + 1) % _vertices.size()]));
+        break;
+    }
+    return std::max(0.0, d - _radius);
+}
+
+osg::BoundingBoxd RegionOfInterest::bound() const
+{
+    osg::BoundingBoxd b;
+    if (_vertices.size() < minimumVertices(_shape)) return b;
+    for (const osg::Vec2d& v : _vertices)
+        b.expandBy(osg::Vec3d(v.x(), v.y(), 0.0));
+    b._min -= osg::Vec3d(_radius, _radius, 0.0);
+    b._max += osg::Vec3d(_radius, _radius, 0.0);
+    return b;
+}
+
+std::string RegionOfInterest::validate() const
+{
+    const std::string label =
+        std::string(toString(_shape)) + (getName().empty() ? "" : " '" + getName() + "'");
+    const std::size_t need = minimumVertices(_shape);
+    if (_vertices.size() < need)
+        return label + " has " + std::to_string(_vertices.size()) + " vertices; it needs at least " +
+               std::to_string(need);
+    for (const osg::Vec2d& v : _vertices)
+        if (!std::isfinite(v.x()) || !std::isfinite(v.y())) return label + " has a non-finite vertex";
+    if (!std::isfinite(_radius) || _radius < 0.0) return label + " has an invalid radius";
+    if (_shape == POLYGON)
+    {
+        double area2 = 0.0;
+        for (std::size_t i = 0; i < _vertices.size(); ++i)
+        {
+            const osg::Vec2d& a = _vertices[i];
+            const osg::Vec2d& b = _vertices[(i + 1) % _vertices.size()];
+            area2 += a.x() * b.y() - b.x() * a.y();
+        }
+        if (std::fabs(area2) <= 1e-12) return label + " has zero area";
+    }
+    return std::string();
+}
+
+const char* RegionOfInterest::toString(Shape shape)
+{
+    switch (shape)
+    {
+    case CIRCLES:
+        return "circles";
+    case POLYLINE:
+        return "polyline";
+    case POLYGON:
+        return "polygon";
+    }
+    return "circles";
+}
+
+bool RegionOfInterest::parseShape(const std::string& name, Shape& shape)
+{
+    std::string n = name;
+    std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    for (Shape s : {CIRCLES, POLYLINE, POLYGON})
+        if (n == toString(s))
+        {
+            shape = s;
+            return true;
+        }
+    return false;
+}
+
+} // namespace osgLoA

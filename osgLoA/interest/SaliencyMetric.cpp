@@ -1,0 +1,181 @@
+// SaliencyMetric: view distance, vertical view angle, region, focus and feature interest, each
+// mapped to [0,1] by a near/far ramp.
+#include <osgLoA/interest/SaliencyMetric>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+namespace osgLoA
+{
+
+namespace
+{
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double boxDistance(const osg::Vec3d& p, const osg::BoundingBoxd& b)
+{
+    const double dx = std::max(0.0, std::max(b.xMin() - p.x(), p.x() - b.xMax()));
+    const double dy = std::max(0.0, std::max(b.yMin() - p.y(), p.y() - b.yMax()));
+    const double dz = std::max(0.0, std::max(b.zMin() - p.z(), p.z() - b.zMax()));
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double regionDistance(const osg::Vec3d& p, const SaliencyView& view)
+{
+    double d = kInf;
+    if (view.regions)
+        for (const auto& r : *view.regions)
+            if (r.valid()) d = std::min(d, r->distance(osg::Vec2d(p.x(), p.y())));
+    return d;
+}
+
+double degrees(double radians)
+{
+    return radians * 180.0 / 3.14159265358979323846;
+}
+} // namespace
+
+SaliencyMetric::SaliencyMetric() = default;
+
+SaliencyMetric::SaliencyMetric(Kind kind, double nearValue, double farValue, double weight)
+    : _kind(kind), _near(nearValue), _far(farValue), _weight(weight)
+{
+}
+
+SaliencyMetric::SaliencyMetric(const SaliencyMetric& other, const osg::CopyOp& copyop)
+    : osg::Object(other, copyop), _kind(other._kind), _near(other._near), _far(other._far),
+      _weight(other._weight)
+{
+}
+
+double SaliencyMetric::measure(const osg::Vec3d& p, const SaliencyView& view, double featureInterest) const
+{
+    switch (_kind)
+    {
+    case VIEW_DISTANCE:
+        return (p - view.eye).length();
+    case VIEW_ANGLE:
+    {
+        const double h = std::hypot(p.x() - view.eye.x(), p.y() - view.eye.y());
+        return degrees(std::atan2(std::max(0.0, view.eye.z() - p.z()), h));
+    }
+    case REGION:
+        return regionDistance(p, view);
+    case FOCUS:
+        return view.focus.valid() ? boxDistance(p, view.focus) : kInf;
+    case FEATURE_INTEREST:
+        return featureInterest;
+    }
+    return 0.0;
+}
+
+void SaliencyMetric::measureRange(const osg::BoundingBoxd& box, const SaliencyView& view,
+                                  double featureInterest, double& qMin, double& qMax) const
+{
+    const osg::Vec3d& e = view.eye;
+    switch (_kind)
+    {
+    case VIEW_DISTANCE:
+    {
+        qMin = boxDistance(e, box);
+        const double dx = std::max(std::fabs(e.x() - box.xMin()), std::fabs(e.x() - box.xMax()));
+        const double dy = std::max(std::fabs(e.y() - box.yMin()), std::fabs(e.y() - box.yMax()));
+        const double dz = std::max(std::fabs(e.z() - box.zMin()), std::fabs(e.z() - box.zMax()));
+        qMax = std::sqrt(dx * dx + dy * dy + dz * dz);
+        return;
+    }
+    case VIEW_ANGLE:
+    {
+        // The angle grows with the height difference and falls with the horizontal distance,
+        // so its extremes lie at the box's top/bottom and nearest/farthest horizontal points.
+        const double hx = std::max(0.0, std::max(box.xMin() - e.x(), e.x() - box.xMax()));
+        const double hy = std::max(0.0, std::max(box.yMin() - e.y(), e.y() - box.yMax()));
+        const double hMin = std::hypot(hx, hy);
+        const double fx = std::max(std::fabs(e.x() - box.xMin()), std::fabs(e.x() - box.xMax()));
+        const double fy = std::max(std::fabs(e.y() - box.yMin()), std::fabs(e.y() - box.yMax()));
+        const double hMax = std::hypot(fx, fy);
+        qMin = degrees(std::atan2(std::max(0.0, e.z() - box.zMax()), hMax));
+        qMax = degrees(std::atan2(std::max(0.0, e.z() - box.zMin()), hMin));
+        return;
+    }
+    case REGION:
+    case FOCUS:
+    {
+        const osg::Vec3d c = box.center();
+        const double q = measure(c, view, featureInterest);
+        const osg::Vec3d half = (box._max - box._min) * 0.5;
+        const double r = _kind == REGION ? std::hypot(half.x(), half.y()) : half.length();
+        qMin = std::max(0.0, q - r);
+        qMax = q + r;
+        return;
+    }
+    case FEATURE_INTEREST:
+        qMin = qMax = featureInterest;
+        return;
+    }
+}
+
+double SaliencyMetric::ramp(double q, double nearValue, double farValue)
+{
+    if (std::isnan(q)) return 0.0;
+    if (q <= nearValue) return 1.0;
+    if (q >= farValue) return 0.0;
+    return 1.0 - (q - nearValue) / (farValue - nearValue); // farValue > q > nearValue: no 0/0
+}
+
+double SaliencyMetric::interest(double q) const
+{
+    if (_kind == FEATURE_INTEREST) return std::isnan(q) ? 0.0 : std::min(1.0, std::max(0.0, q));
+    return ramp(q, _near, _far);
+}
+
+std::string SaliencyMetric::validate() const
+{
+    const std::string label = std::string(toString(_kind)) + " metric";
+    if (!std::isfinite(_weight) || _weight < 0.0)
+        return label + " has weight " + std::to_string(_weight) + "; it must be finite and >= 0";
+    if (_kind == FEATURE_INTEREST) return std::string();
+    if (!std::isfinite(_near) || !std::isfinite(_far)) return label + " has a non-finite near or far value";
+    if (_near < 0.0) return label + " has near " + std::to_string(_near) + " < 0";
+    if (_near > _far)
+        return label + " is inverted: near " + std::to_string(_near) + " > far " + std::to_string(_far);
+    if (_kind == VIEW_ANGLE && _far > 90.0)
+        return label + " has far " + std::to_string(_far) + " > 90 degrees";
+    return std::string();
+}
+
+const char* SaliencyMetric::toString(Kind kind)
+{
+    switch (kind)
+    {
+    case VIEW_DISTANCE:
+        return "view-distance";
+    case VIEW_ANGLE:
+        return "view-angle";
+    case REGION:
+        return "region";
+    case FOCUS:
+        return "focus";
+    case FEATURE_INTEREST:
+        return "feature-interest";
+    }
+    return "view-distance";
+}
+
+bool SaliencyMetric::parseKind(const std::string& name, Kind& kind)
+{
+    std::string n = name;
+    std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::replace(n.begin(), n.end(), '_', '-');
+    for (int k = 0; k < kNumKinds; ++k)
+        if (n == toString(Kind(k)))
+        {
+            kind = Kind(k);
+            return true;
+        }
+    return false;
+}
+
+} // namespace osgLoA

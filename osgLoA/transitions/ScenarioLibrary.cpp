@@ -1,0 +1,304 @@
+// ScenarioLibrary: the paper's usage scenarios in code, library directories, scenario files.
+#include <osgLoA/transitions/ScenarioLibrary>
+
+#include <osgLoA/util/AtomicFile>
+
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+#include <osgDB/Registry>
+#include <osgDB/WriteFile>
+
+#include <algorithm>
+#include <set>
+
+#ifndef OSGLOA_SCENARIO_SOURCE_DIR
+#define OSGLOA_SCENARIO_SOURCE_DIR ""
+#endif
+#ifndef OSGLOA_SCENARIO_INSTALL_DIR
+#define OSGLOA_SCENARIO_INSTALL_DIR ""
+#endif
+
+namespace osgLoA
+{
+
+namespace
+{
+const char* const kExtensions[] = {"osgt", "osgb", "osgx"};
+
+// Large features (terrain, streets, water, green spaces) change along their extent, so they
+// blend per fragment; buildings blend as whole objects.
+const TransitionConfiguration::FeatureTypes kAreaTypes = {FeatureType::Street, FeatureType::Water,
+                                                          FeatureType::Green, FeatureType::Terrain};
+const TransitionConfiguration::FeatureTypes kObjectTypes = {FeatureType::Building, FeatureType::Generic};
+
+osg::ref_ptr<TransitionConfiguration> config(const std::string& name, const std::string& style,
+                                             const TransitionConfiguration::FeatureTypes& types,
+                                             TransitionConfiguration::Interpolation mode,
+                                             const BlendFunction& blend)
+{
+    osg::ref_ptr<TransitionConfiguration> c = new TransitionConfiguration;
+    c->setName(name);
+    c->setStyle(style);
+    c->setFeatureTypes(types);
+    c->setInterpolation(mode);
+    c->setBlendFunction(blend);
+    return c;
+}
+
+// Three styles over one interest axis, for both area (fragment) and object features:
+// photorealistic for high interest, abstract in the middle, a third style for low interest.
+void addThreeLevels(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetric>>& metrics,
+                    const std::string& lowStyle, float lowMid0, float lowMid1, float midHigh0, float midHigh1)
+{
+    struct Level
+    {
+        const char* style;
+        BlendFunction blend;
+    };
+    const Level levels[] = {{"photorealistic", BlendFunction(midHigh0, midHigh1, 1.0f, 1.0f)},
+                            {"abstract", BlendFunction(lowMid0, lowMid1, midHigh0, midHigh1)},
+                            {lowStyle.c_str(), BlendFunction(0.0f, 0.0f, lowMid0, lowMid1)}};
+    for (const Level& l : levels)
+        for (bool area : {false, true})
+        {
+            auto c =
+                config(std::string(l.style) + (area ? "-areas" : "-objects"), l.style,
+                       area ? kAreaTypes : kObjectTypes,
+                       area ? TransitionConfiguration::FRAGMENT : TransitionConfiguration::OBJECT, l.blend);
+            for (const auto& m : metrics)
+                c->addMetric(osg::clone(m.get(), osg::CopyOp::DEEP_COPY_ALL));
+            s.addConfiguration(c.get());
+        }
+}
+
+// Two styles with one smooth transition between them, for area and object features.
+void addTwoLevels(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetric>>& metrics,
+                  const std::string& highStyle, const std::string& lowStyle, float t0, float t1,
+                  const osg::Vec2f& interestScope = osg::Vec2f(0.0f, 1.0f))
+{
+    for (bool high : {true, false})
+        for (bool area : {false, true})
+        {
+            const std::string& style = high ? highStyle : lowStyle;
+            auto c = config(style + (area ? "-areas" : "-objects"), style, area ? kAreaTypes : kObjectTypes,
+                            area ? TransitionConfiguration::FRAGMENT : TransitionConfiguration::OBJECT,
+                            high ? BlendFunction(t0, t1, 1.0f, 1.0f) : BlendFunction(0.0f, 0.0f, t0, t1));
+            c->setInterestRange(interestScope);
+            for (const auto& m : metrics)
+                c->addMetric(osg::clone(m.get(), osg::CopyOp::DEEP_COPY_ALL));
+            s.addConfiguration(c.get());
+        }
+}
+
+osg::ref_ptr<UsageScenario> makeScenario(const std::string& name, const std::string& description)
+{
+    osg::ref_ptr<UsageScenario> s = new UsageScenario;
+    s->setName(name);
+    s->setDescription(description);
+    return s;
+}
+} // namespace
+
+std::vector<std::string> ScenarioLibrary::builtinNames()
+{
+    return {"manual", "distance", "view-angle", "route", "circular-roi", "blueprint"};
+}
+
+osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& name)
+{
+    typedef SaliencyMetric M;
+    if (name == "manual")
+    {
+        // Figure 9A: the user picks each feature type's LoA through its interest; hard steps.
+        auto s = makeScenario(name, "Manual LoA selection (paper 004 Figure 9A): each feature type's LoA is "
+                                    "chosen by hand through its interest value; hard transitions.");
+        osg::ref_ptr<FeatureInterest> fi = new FeatureInterest;
+        fi->setTypeInterest(FeatureType::Building, 0.5f);
+        fi->setTypeInterest(FeatureType::Street, 0.2f);
+        fi->setTypeInterest(FeatureType::Water, 0.2f);
+        fi->setTypeInterest(FeatureType::Green, 1.0f);
+        fi->setTypeInterest(FeatureType::Terrain, 1.0f);
+        fi->setTypeInterest(FeatureType::Generic, 0.5f);
+        s->setInterest(fi.get());
+        addThreeLevels(*s, {new M(M::FEATURE_INTEREST, 0.0, 0.0)}, "cartographic", 0.33f, 0.33f, 0.66f,
+                       0.66f);
+        return s;
+    }
+    if (name == "distance")
+    {
+        // Figure 9B: detail near the camera, abstraction far away.
+        auto s =
+            makeScenario(name, "View-distance transitions (paper 004 Figure 9B): photorealistic near the "
+                               "camera, abstract at mid range, cartographic far away; smooth.");
+        addThreeLevels(*s, {new M(M::VIEW_DISTANCE, 150.0, 900.0)}, "cartographic", 0.25f, 0.4f, 0.6f, 0.75f);
+        return s;
+    }
+    if (name == "view-angle")
+    {
+        // §4.1: detailed and map-like views blended by the vertical view angle, weighted with
+        // the view distance so that a near bird's-eye view is not drawn in full detail;
+        // landmarks (static interest >= 0.8) stay photorealistic.
+        auto s = makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
+                                    "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
+                                    "3:1 with view distance); landmarks keep their detail.");
+        addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), new M(M::VIEW_DISTANCE, 200.0, 1200.0, 1.0)},
+                     "photorealistic", "cartographic", 0.4f, 0.6f, osg::Vec2f(0.0f, 0.79f));
+        auto landmarks = config("landmarks", "photorealistic", kObjectTypes, TransitionConfiguration::OBJECT,
+                                BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
+        landmarks->setInterestRange(osg::Vec2f(0.8f, 1.0f));
+        landmarks->addMetric(new M(M::FEATURE_INTEREST, 0.0, 0.0));
+        s->addConfiguration(landmarks.get());
+        return s;
+    }
+    if (name == "route")
+    {
+        // Figure 9C: features along a route in detail, the context cartographic.
+        auto s =
+            makeScenario(name, "Route highlighting (paper 004 Figure 9C): features within 40 m of a route "
+                               "photorealistic, fading to cartographic 40-160 m away.");
+        osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE,
+                                                                    {{-480.0, -330.0},
+                                                                     {-160.0, -330.0},
+                                                                     {-160.0, 40.0},
+                                                                     {200.0, 40.0},
+                                                                     {200.0, 330.0},
+                                                                     {460.0, 330.0}},
+                                                                    10.0);
+        route->setName("route");
+        s->addRegion(route.get());
+        addTwoLevels(*s, {new M(M::REGION, 30.0, 150.0)}, "photorealistic", "cartographic", 0.3f, 0.7f);
+        return s;
+    }
+    if (name == "circular-roi")
+    {
+        // Figure 9D-F: a circular region of interest in detail, abstraction around it.
+        auto s = makeScenario(name, "Circular region of interest (paper 004 Figure 9D-F): photorealistic "
+                                    "within 150 m of the city centre, abstract beyond 250 m.");
+        osg::ref_ptr<RegionOfInterest> roi =
+            new RegionOfInterest(RegionOfInterest::CIRCLES, {{0.0, 0.0}}, 150.0);
+        roi->setName("centre");
+        s->addRegion(roi.get());
+        addTwoLevels(*s, {new M(M::REGION, 0.0, 100.0)}, "photorealistic", "abstract", 0.35f, 0.65f);
+        return s;
+    }
+    if (name == "blueprint")
+    {
+        // Figure 9E: the focus object drawn as a blueprint, the context in detail.
+        auto s = makeScenario(name, "Blueprint focus (paper 004 Figure 9E): the focus object and what lies "
+                                    "within 30 m of it drawn as a blueprint, the context photorealistic.");
+        s->setFocusFeature(1);
+        addTwoLevels(*s, {new M(M::FOCUS, 30.0, 90.0)}, "blueprint", "photorealistic", 0.45f, 0.55f);
+        return s;
+    }
+    throw ScenarioError("unknown built-in scenario '" + name + "'");
+}
+
+std::vector<std::string> ScenarioLibrary::searchDirectories()
+{
+    std::vector<std::string> dirs;
+    for (const std::string& d : osgDB::getDataFilePathList())
+        dirs.push_back(d + "/scenarios");
+    dirs.push_back(OSGLOA_SCENARIO_INSTALL_DIR);
+    dirs.push_back(OSGLOA_SCENARIO_SOURCE_DIR);
+    std::vector<std::string> existing;
+    for (const std::string& d : dirs)
+        if (!d.empty() && osgDB::fileType(d) == osgDB::DIRECTORY &&
+            std::find(existing.begin(), existing.end(), d) == existing.end())
+            existing.push_back(d);
+    return existing;
+}
+
+std::string ScenarioLibrary::findFile(const std::string& name)
+{
+    if (name.empty() || name.find('/') != std::string::npos) return std::string();
+    for (const std::string& d : searchDirectories())
+        for (const char* ext : kExtensions)
+        {
+            const std::string path = d + "/" + name + "." + ext;
+            if (osgDB::fileType(path) == osgDB::REGULAR_FILE) return path;
+        }
+    return std::string();
+}
+
+std::vector<std::string> ScenarioLibrary::availableNames()
+{
+    std::set<std::string> names;
+    for (const std::string& n : builtinNames())
+        names.insert(n);
+    for (const std::string& d : searchDirectories())
+        for (const std::string& f : osgDB::getDirectoryContents(d))
+            if (isScenarioFile(f)) names.insert(osgDB::getNameLessExtension(f));
+    return std::vector<std::string>(names.begin(), names.end());
+}
+
+bool ScenarioLibrary::isScenarioFile(const std::string& path)
+{
+    const std::string ext = osgDB::getLowerCaseFileExtension(path);
+    return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
+}
+
+osg::ref_ptr<UsageScenario> ScenarioLibrary::load(const std::string& nameOrPath, std::string* origin)
+{
+    if (nameOrPath.empty()) throw ScenarioError("no scenario name or file given");
+    if (osgDB::fileType(nameOrPath) == osgDB::REGULAR_FILE || isScenarioFile(nameOrPath) ||
+        nameOrPath.find('/') != std::string::npos)
+    {
+        if (origin) *origin = nameOrPath;
+        return readFile(nameOrPath);
+    }
+    const std::string file = findFile(nameOrPath);
+    if (!file.empty())
+    {
+        if (origin) *origin = file;
+        return readFile(file);
+    }
+    const std::vector<std::string> builtins = builtinNames();
+    if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end())
+    {
+        if (origin) *origin = "built-in";
+        return createBuiltin(nameOrPath);
+    }
+    std::string known;
+    for (const std::string& n : availableNames())
+        known += (known.empty() ? "" : ", ") + n;
+    throw ScenarioError("no scenario named '" + nameOrPath + "' (known: " + known + ")");
+}
+
+osg::ref_ptr<UsageScenario> ScenarioLibrary::readFile(const std::string& path)
+{
+    if (!isScenarioFile(path))
+        throw ScenarioError("'" + path + "' is not a scenario file (expected .osgt, .osgb or .osgx)");
+    if (osgDB::fileType(path) != osgDB::REGULAR_FILE)
+        throw ScenarioError("scenario file '" + path + "' not found");
+    osgDB::ReaderWriter* rw =
+        osgDB::Registry::instance()->getReaderWriterForExtension(osgDB::getLowerCaseFileExtension(path));
+    if (!rw) throw ScenarioError("no osgDB reader for '" + path + "' (is the osg2 plugin installed?)");
+    osgDB::ReaderWriter::ReadResult rr = rw->readObject(path);
+    if (!rr.success() || !rr.getObject())
+        throw ScenarioError("cannot read scenario file '" + path + "'" +
+                            (rr.message().empty() ? std::string() : ": " + rr.message()));
+    osg::ref_ptr<UsageScenario> s = dynamic_cast<UsageScenario*>(rr.getObject());
+    if (!s)
+        throw ScenarioError("'" + path + "' holds a " + rr.getObject()->className() +
+                            ", not an osgLoA::UsageScenario");
+    if (s->getName().empty()) s->setName(osgDB::getNameLessExtension(osgDB::getSimpleFileName(path)));
+    return s;
+}
+
+void ScenarioLibrary::writeFile(const UsageScenario& scenario, const std::string& path)
+{
+    if (!isScenarioFile(path))
+        throw ScenarioError("'" + path + "' is not a scenario file name (use .osgt, .osgb or .osgx)");
+    try
+    {
+        AtomicFile::write(path,
+                          [&](const std::string& tmp) { return osgDB::writeObjectFile(scenario, tmp); });
+    }
+    catch (const std::exception& e)
+    {
+        throw ScenarioError("cannot write scenario file '" + path + "': " + e.what());
+    }
+}
+
+} // namespace osgLoA

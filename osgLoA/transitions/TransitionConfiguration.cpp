@@ -1,0 +1,271 @@
+// TransitionConfiguration: scope, style, interpolation, metric combination, validity range.
+#include <osgLoA/transitions/TransitionConfiguration>
+
+#include <osgLoA/styles/GraphicStyleCatalog>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+namespace osgLoA
+{
+
+namespace
+{
+std::string lower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+bool finite2(const osg::Vec2f& v)
+{
+    return std::isfinite(v.x()) && std::isfinite(v.y());
+}
+} // namespace
+
+TransitionConfiguration::TransitionConfiguration() = default;
+
+TransitionConfiguration::TransitionConfiguration(const TransitionConfiguration& other,
+                                                 const osg::CopyOp& copyop)
+    : osg::Object(other, copyop), _featureTypes(other._featureTypes), _subTypes(other._subTypes),
+      _lodRange(other._lodRange), _interestRange(other._interestRange), _style(other._style),
+      _interpolation(other._interpolation), _groupFocus(other._groupFocus),
+      _hasGroupFocus(other._hasGroupFocus), _combination(other._combination), _fadeIn(other._fadeIn),
+      _fadeOut(other._fadeOut)
+{
+    for (const auto& m : other._metrics)
+        _metrics.push_back(m.valid() ? osg::clone(m.get(), copyop) : nullptr);
+}
+
+void TransitionConfiguration::setFeatureTypes(const FeatureTypes& types)
+{
+    _featureTypes = types;
+    std::sort(_featureTypes.begin(), _featureTypes.end());
+    _featureTypes.erase(std::unique(_featureTypes.begin(), _featureTypes.end()), _featureTypes.end());
+}
+
+void TransitionConfiguration::addFeatureType(FeatureType type)
+{
+    FeatureTypes t = _featureTypes;
+    t.push_back(type);
+    setFeatureTypes(t);
+}
+
+bool TransitionConfiguration::hasFeatureType(FeatureType type) const
+{
+    return std::binary_search(_featureTypes.begin(), _featureTypes.end(), type);
+}
+
+void TransitionConfiguration::setAllFeatureTypes()
+{
+    setFeatureTypes(FeatureTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes)));
+}
+
+bool TransitionConfiguration::matches(const Feature& feature, float staticInterest) const
+{
+    if (!hasFeatureType(feature.getType())) return false;
+    if (!_subTypes.empty() &&
+        std::find(_subTypes.begin(), _subTypes.end(), feature.getSubType()) == _subTypes.end())
+        return false;
+    const float lod = feature.getLod();
+    if (lod >= 0.0f && (lod < _lodRange.x() || lod > _lodRange.y())) return false;
+    return staticInterest >= _interestRange.x() && staticInterest <= _interestRange.y();
+}
+
+SaliencyMetric* TransitionConfiguration::addMetric(SaliencyMetric* metric)
+{
+    osg::ref_ptr<SaliencyMetric> keep = metric;
+    if (!metric) return nullptr;
+    for (auto& m : _metrics)
+        if (m.valid() && m->getKind() == metric->getKind())
+        {
+            m = metric;
+            return metric;
+        }
+    _metrics.push_back(metric);
+    return metric;
+}
+
+const SaliencyMetric* TransitionConfiguration::getMetric(SaliencyMetric::Kind kind) const
+{
+    for (const auto& m : _metrics)
+        if (m.valid() && m->getKind() == kind) return m.get();
+    return nullptr;
+}
+
+double TransitionConfiguration::interestAt(const osg::Vec3d& p, const SaliencyView& view,
+                                           double featureInterest) const
+{
+    double sum = 0.0, weights = 0.0;
+    double lo = 1.0, hi = 0.0;
+    bool any = false;
+    for (const auto& m : _metrics)
+    {
+        if (!m.valid()) continue;
+        const double v = m->evaluate(p, view, featureInterest);
+        sum += m->getWeight() * v;
+        weights += m->getWeight();
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        any = true;
+    }
+    if (!any) return 0.0;
+    switch (_combination)
+    {
+    case MINIMUM:
+        return lo;
+    case MAXIMUM:
+        return hi;
+    case WEIGHTED_MEAN:
+        break;
+    }
+    return weights > 0.0 ? sum / weights : 0.0;
+}
+
+void TransitionConfiguration::interestRange(const osg::BoundingBoxd& box, const SaliencyView& view,
+                                            double featureInterest, double& lo, double& hi) const
+{
+    // Every metric's interest is non-increasing in its quantity, and every combination is
+    // non-decreasing in each metric's interest, so the bounds combine bound by bound.
+    double sumLo = 0.0, sumHi = 0.0, weights = 0.0;
+    double minLo = 1.0, minHi = 1.0, maxLo = 0.0, maxHi = 0.0;
+    bool any = false;
+    for (const auto& m : _metrics)
+    {
+        if (!m.valid()) continue;
+        double qMin = 0.0, qMax = 0.0;
+        m->measureRange(box, view, featureInterest, qMin, qMax);
+        const double iLo = m->interest(qMax), iHi = m->interest(qMin);
+        sumLo += m->getWeight() * iLo;
+        sumHi += m->getWeight() * iHi;
+        weights += m->getWeight();
+        minLo = std::min(minLo, iLo);
+        minHi = std::min(minHi, iHi);
+        maxLo = std::max(maxLo, iLo);
+        maxHi = std::max(maxHi, iHi);
+        any = true;
+    }
+    if (!any)
+    {
+        lo = hi = 0.0;
+        return;
+    }
+    switch (_combination)
+    {
+    case MINIMUM:
+        lo = minLo, hi = minHi;
+        return;
+    case MAXIMUM:
+        lo = maxLo, hi = maxHi;
+        return;
+    case WEIGHTED_MEAN:
+        break;
+    }
+    lo = weights > 0.0 ? sumLo / weights : 0.0;
+    hi = weights > 0.0 ? sumHi / weights : 0.0;
+}
+
+std::vector<std::string> TransitionConfiguration::validate() const
+{
+    std::vector<std::string> problems;
+    const std::string label =
+        "configuration '" + (getName().empty() ? std::string("(unnamed)") : getName()) + "': ";
+    if (_featureTypes.empty()) problems.push_back(label + "empty scope: no feature type");
+    if (_style.empty())
+        problems.push_back(label + "no graphic style");
+    else if (!GraphicStyleCatalog::instance().contains(_style))
+        problems.push_back(label + "unknown graphic style '" + _style + "'");
+    const std::string blend = getBlendFunction().validate();
+    if (!blend.empty()) problems.push_back(label + blend);
+    if (!finite2(_lodRange) || _lodRange.x() > _lodRange.y())
+    {
+        std::ostringstream s;
+        s << label << "LoD range [" << _lodRange.x() << ", " << _lodRange.y()
+          << "] is inverted or not finite";
+        problems.push_back(s.str());
+    }
+    if (!finite2(_interestRange) || _interestRange.x() > _interestRange.y() || _interestRange.x() < 0.0f ||
+        _interestRange.y() > 1.0f)
+    {
+        std::ostringstream s;
+        s << label << "interest scope [" << _interestRange.x() << ", " << _interestRange.y()
+          << "] is empty, inverted or outside [0, 1]";
+        problems.push_back(s.str());
+    }
+    if (_metrics.empty()) problems.push_back(label + "no saliency metric");
+    bool seen[SaliencyMetric::kNumKinds] = {};
+    for (const auto& m : _metrics)
+    {
+        if (!m.valid())
+        {
+            problems.push_back(label + "a null saliency metric");
+            continue;
+        }
+        if (seen[m->getKind()])
+            problems.push_back(label + "two " + SaliencyMetric::toString(m->getKind()) + " metrics");
+        seen[m->getKind()] = true;
+        const std::string e = m->validate();
+        if (!e.empty()) problems.push_back(label + e);
+    }
+    if (_hasGroupFocus && _interpolation != GROUP)
+        problems.push_back(label + "a group focus point is set but the interpolation is " +
+                           toString(_interpolation));
+    return problems;
+}
+
+const char* TransitionConfiguration::toString(Interpolation mode)
+{
+    switch (mode)
+    {
+    case FRAGMENT:
+        return "fragment";
+    case OBJECT:
+        return "object";
+    case GROUP:
+        return "group";
+    }
+    return "object";
+}
+
+bool TransitionConfiguration::parseInterpolation(const std::string& name, Interpolation& mode)
+{
+    const std::string n = lower(name);
+    for (Interpolation m : {FRAGMENT, OBJECT, GROUP})
+        if (n == toString(m))
+        {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
+const char* TransitionConfiguration::toString(Combination c)
+{
+    switch (c)
+    {
+    case WEIGHTED_MEAN:
+        return "weighted-mean";
+    case MINIMUM:
+        return "minimum";
+    case MAXIMUM:
+        return "maximum";
+    }
+    return "weighted-mean";
+}
+
+bool TransitionConfiguration::parseCombination(const std::string& name, Combination& c)
+{
+    std::string n = lower(name);
+    std::replace(n.begin(), n.end(), '_', '-');
+    for (Combination m : {WEIGHTED_MEAN, MINIMUM, MAXIMUM})
+        if (n == toString(m))
+        {
+            c = m;
+            return true;
+        }
+    return false;
+}
+
+} // namespace osgLoA
