@@ -1,6 +1,8 @@
 // LoANode: binds and evaluates a usage scenario during cull.
 #include <osgLoA/transitions/LoANode>
 
+#include <osgLoA/transitions/TransitionUniforms>
+
 #include <osg/Notify>
 #include <osgUtil/CullVisitor>
 
@@ -66,6 +68,9 @@ void LoANode::bind()
     try
     {
         _evaluator->bind(_scenario.get(), _index);
+        osg::StateSet* ss = getOrCreateStateSet();
+        ss->setDataVariance(osg::Object::DYNAMIC);
+        TransitionUniforms::applyScenario(*ss, *_evaluator);
     }
     catch (const std::exception& e)
     {
@@ -109,7 +114,15 @@ void LoANode::traverse(osg::NodeVisitor& nv)
                 const Feature& f = *_index.entries()[features[i].entry].feature;
                 _visible[i] = f.getBound().valid() && !cv->isCulled(f.getBound()) ? 1 : 0;
             }
-            _evaluator->evaluate(osg::Vec3d(cv->getEyeLocal()), _visible.data());
+            const osg::Vec3d eye(cv->getEyeLocal());
+            _evaluator->evaluate(eye, _visible.data());
+            // Fragment-mode uniforms: the eye, and world -> local for the shaders' positions
+            // (MV = localToWorld * V, so worldToLocal = V * inverse(MV)).
+            osg::StateSet* ss = getOrCreateStateSet();
+            TransitionUniforms::applyEye(*ss, eye);
+            if (const osg::Camera* camera = cv->getCurrentCamera())
+                TransitionUniforms::applyWorldToScene(
+                    *ss, camera->getViewMatrix() * osg::Matrixd::inverse(*cv->getModelViewMatrix()));
             ++_evaluations;
             _lastFrame = nv.getFrameStamp() ? nv.getFrameStamp()->getFrameNumber() : 0;
         }
