@@ -129,8 +129,9 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
     {
         // Figure 9B: detail near the camera, abstraction far away.
         auto s =
-            makeScenario(name, "View-distance transitions (paper 004 Figure 9B): photorealistic near the "
-                               "camera, abstract at mid range, cartographic far away; smooth.");
+            makeScenario(name, "View-distance transitions (paper 004 Figure 9B): photorealistic up to about "
+                               "340 m from the camera, abstract from 450 to 600 m, cartographic beyond 710 "
+                               "m; smooth in between.");
         addThreeLevels(*s, {new M(M::VIEW_DISTANCE, 150.0, 900.0)}, "cartographic", 0.25f, 0.4f, 0.6f, 0.75f);
         return s;
     }
@@ -155,8 +156,8 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
     {
         // Figure 9C: features along a route in detail, the context cartographic.
         auto s =
-            makeScenario(name, "Route highlighting (paper 004 Figure 9C): features within 40 m of a route "
-                               "photorealistic, fading to cartographic 40-160 m away.");
+            makeScenario(name, "Route highlighting (paper 004 Figure 9C): photorealistic within 40 m of the "
+                               "route's centre line, fading smoothly to cartographic 160 m away.");
         osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE,
                                                                     {{-480.0, -330.0},
                                                                      {-160.0, -330.0},
@@ -167,7 +168,7 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
                                                                     10.0);
         route->setName("route");
         s->addRegion(route.get());
-        addTwoLevels(*s, {new M(M::REGION, 30.0, 150.0)}, "photorealistic", "cartographic", 0.3f, 0.7f);
+        addTwoLevels(*s, {new M(M::REGION, 30.0, 150.0)}, "photorealistic", "cartographic", 0.0f, 1.0f);
         return s;
     }
     if (name == "circular-roi")
@@ -179,16 +180,18 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
             new RegionOfInterest(RegionOfInterest::CIRCLES, {{0.0, 0.0}}, 150.0);
         roi->setName("centre");
         s->addRegion(roi.get());
-        addTwoLevels(*s, {new M(M::REGION, 0.0, 100.0)}, "photorealistic", "abstract", 0.35f, 0.65f);
+        addTwoLevels(*s, {new M(M::REGION, 0.0, 100.0)}, "photorealistic", "abstract", 0.0f, 1.0f);
         return s;
     }
     if (name == "blueprint")
     {
         // Figure 9E: the focus object drawn as a blueprint, the context in detail.
-        auto s = makeScenario(name, "Blueprint focus (paper 004 Figure 9E): the focus object and what lies "
-                                    "within 30 m of it drawn as a blueprint, the context photorealistic.");
-        s->setFocusFeature(1);
-        addTwoLevels(*s, {new M(M::FOCUS, 30.0, 90.0)}, "blueprint", "photorealistic", 0.45f, 0.55f);
+        auto s = makeScenario(
+            name, "Blueprint focus (paper 004 Figure 9E): the focus object (feature 184, the demo "
+                  "city's central tower) and what lies within 30 m of it drawn as a blueprint, fading to the "
+                  "photorealistic context 90 m away.");
+        s->setFocusFeature(184); // the demo city's central landmark (a tower)
+        addTwoLevels(*s, {new M(M::FOCUS, 30.0, 90.0)}, "blueprint", "photorealistic", 0.0f, 1.0f);
         return s;
     }
     throw ScenarioError("unknown built-in scenario '" + name + "'");
