@@ -62,7 +62,10 @@ float loa_regionDistance(vec3 p)
     vec2 uv = (p.xy - loa_regionMapFrame.xy) * loa_regionMapFrame.zw;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
         return LOA_INFINITY;
-    return texture(loa_regionMap, uv).r * loa_regionMapScale;
+    // Texels the flooding did not reach hold +infinity, and bilinear filtering next to them
+    // (a + w (b - a)) gives NaN: both mean "farther than any ramp reaches".
+    float d = texture(loa_regionMap, uv).r;
+    return d < 1.0e29 ? d * loa_regionMapScale : LOA_INFINITY;
 }
 
 float loa_focusDistance(vec3 p)

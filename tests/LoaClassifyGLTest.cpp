@@ -63,7 +63,8 @@ TEST(LoaClassifyGLTest, BestViewsForEveryLandmarkAndThresholdsSelectLandmarks)
 {
     const std::string dir = loatest::freshDirectory("LoaClassifyGLTestViews");
     std::string out;
-    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0) << out;
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0)
+        << out;
     const std::string classify = std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/city.osgb'";
     ASSERT_EQ(loatest::run(classify + " --best-views", out), 0) << out;
     std::size_t views = 0;

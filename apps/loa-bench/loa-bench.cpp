@@ -54,6 +54,19 @@ cases:
                  and of every name but one feature in five; classify time against the
                  fraction of drawables typed wrongly (error_mean) and left generic
                  (error_max), for appearance thresholds 0 (same texture only) to 40 Delta E
+  interest       ScenarioEvaluator::evaluate per frame (CPU, one thread, no GL) for synthetic
+                 grid cities of 1k, 10k and 100k features and the built-in distance, route and
+                 view-angle scenarios, the eye circling the centre; error_mean/error_max: the
+                 mean and max over five eyes of the fraction of fragment-mode matches flagged
+                 mayContribute whose weight is 0 at every point of a dense sampling of the
+                 feature's box (draws the conservative flag costs without showing anything)
+  distance-field the region-interest distance map (jump flooding, docs/distance-field.md) of a
+                 2048 m ground with a route, three circles and a polygon at 512^2, 1024^2 and
+                 2048^2 texels: CPU seed rasterization, the CPU exact EDT (Felzenszwalb &
+                 Huttenlocher; the reference) and the GPU passes of JFA, 1+JFA and JFA+2 (and
+                 1+JFA with the seeds uploaded again each time), ms per computation ended by
+                 glFinish; error_mean = mean |error| in texels against the exact EDT,
+                 error_max = fraction of texels off by more than one texel
 
 options:
   --case NAME    run this case (repeatable; default: all)
@@ -340,7 +353,9 @@ int main(int argc, char** argv)
     const std::vector<std::pair<std::string, CaseFn>> cases = {{"plain-render", plainRender},
                                                                {"msaa", msaa},
                                                                {"import", import},
-                                                               {"classify-appearance", classifyAppearance}};
+                                                               {"classify-appearance", classifyAppearance},
+                                                               {"interest", interest},
+                                                               {"distance-field", distanceField}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace osgLoA
 {
@@ -133,17 +134,25 @@ double SaliencyMetric::interest(double q) const
 
 std::string SaliencyMetric::validate() const
 {
-    const std::string label = std::string(toString(_kind)) + " metric";
+    std::ostringstream s;
+    s << toString(_kind) << " metric ";
     if (!std::isfinite(_weight) || _weight < 0.0)
-        return label + " has weight " + std::to_string(_weight) + "; it must be finite and >= 0";
+    {
+        s << "has weight " << _weight << "; it must be finite and >= 0";
+        return s.str();
+    }
     if (_kind == FEATURE_INTEREST) return std::string();
-    if (!std::isfinite(_near) || !std::isfinite(_far)) return label + " has a non-finite near or far value";
-    if (_near < 0.0) return label + " has near " + std::to_string(_near) + " < 0";
-    if (_near > _far)
-        return label + " is inverted: near " + std::to_string(_near) + " > far " + std::to_string(_far);
-    if (_kind == VIEW_ANGLE && _far > 90.0)
-        return label + " has far " + std::to_string(_far) + " > 90 degrees";
-    return std::string();
+    if (!std::isfinite(_near) || !std::isfinite(_far))
+        s << "has a non-finite near or far value";
+    else if (_near < 0.0)
+        s << "has near " << _near << " < 0";
+    else if (_near > _far)
+        s << "is inverted: near " << _near << " > far " << _far;
+    else if (_kind == VIEW_ANGLE && _far > 90.0)
+        s << "has far " << _far << " > 90 degrees";
+    else
+        return std::string();
+    return s.str();
 }
 
 const char* SaliencyMetric::toString(Kind kind)

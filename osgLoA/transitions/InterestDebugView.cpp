@@ -19,6 +19,8 @@ osg::ref_ptr<osg::Group> InterestDebugView::create(LoANode& node, int configurat
                                     " is out of range (0.." + std::to_string(n - 1) + ")");
     osg::ref_ptr<osg::Group> group = new osg::Group;
     group->setName("loa.interest-debug");
+    // The node's region distance map is computed by pre-render cameras: draw them first.
+    if (DistanceField* field = node.getDistanceField()) group->addChild(field);
     for (unsigned i = 0; i < node.getNumChildren(); ++i)
         group->addChild(node.getChild(i));
     osg::StateSet* ss = group->getOrCreateStateSet();

@@ -4,6 +4,8 @@
 #include <osgLoA/transitions/TransitionUniforms>
 
 #include <osg/Notify>
+
+#include <algorithm>
 #include <osgUtil/CullVisitor>
 
 namespace osgLoA
@@ -71,6 +73,11 @@ void LoANode::bind()
         osg::StateSet* ss = getOrCreateStateSet();
         ss->setDataVariance(osg::Object::DYNAMIC);
         TransitionUniforms::applyScenario(*ss, *_evaluator);
+        setUpDistanceField();
+        if (_scenario->getFocusFeature() != 0 && !_evaluator->getView().focus.valid())
+            OSG_WARN << "osgLoA::LoANode: scenario '" << _scenario->getName() << "' focuses on feature "
+                     << _scenario->getFocusFeature()
+                     << ", which this model does not have: the focus metric is 0 everywhere" << std::endl;
     }
     catch (const std::exception& e)
     {
@@ -78,6 +85,45 @@ void LoANode::bind()
         _evaluator = new ScenarioEvaluator;
         throw;
     }
+}
+
+void LoANode::setUpDistanceField()
+{
+    double texel = 0.0, maxDistance = 0.0;
+    for (const auto& c : _scenario->getConfigurations())
+    {
+        const SaliencyMetric* m = c->getMetric(SaliencyMetric::REGION);
+        if (!m || c->getInterpolation() != TransitionConfiguration::FRAGMENT) continue;
+        const double t = std::max(m->getFar() - m->getNear(), 1.0) / 64.0;
+        texel = texel > 0.0 ? std::min(texel, t) : t;
+        maxDistance = std::max(maxDistance, m->getFar());
+    }
+    osg::BoundingBoxd area;
+    for (const auto& f : _evaluator->features())
+        if (f.bound.valid()) area.expandBy(f.bound);
+    osg::StateSet* ss = getOrCreateStateSet();
+    if (texel <= 0.0 || !area.valid())
+    {
+        if (_distanceField.valid())
+            setNumChildrenRequiringUpdateTraversal(getNumChildrenRequiringUpdateTraversal() - 1);
+        _distanceField = nullptr;
+        TransitionUniforms::applyRegionMap(*ss, nullptr, osg::Vec2d(), osg::Vec2d(1, 1), 1.0);
+        return;
+    }
+    if (!_distanceField.valid())
+    {
+        _distanceField = new DistanceField;
+        // Its seeds are rasterized in the update traversal, which must therefore reach us.
+        setNumChildrenRequiringUpdateTraversal(getNumChildrenRequiringUpdateTraversal() + 1);
+    }
+    const DistanceField::Grid grid = DistanceField::Grid::cover(area, texel);
+    _distanceField->setGrid(grid);
+    _distanceField->setUnits(DistanceField::WORLD);
+    _distanceField->setMaxDistance(maxDistance + grid.texelSize);
+    _distanceField->setRegions(_scenario->getRegions());
+    TransitionUniforms::applyRegionMap(*ss, _distanceField->getDistanceTexture(), grid.origin,
+                                       osg::Vec2d(grid.width * grid.texelSize, grid.height * grid.texelSize),
+                                       1.0);
 }
 
 void LoANode::evaluate(const osg::Vec3d& eye)
@@ -92,7 +138,10 @@ void LoANode::traverse(osg::NodeVisitor& nv)
     osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR
                                    ? dynamic_cast<osgUtil::CullVisitor*>(&nv)
                                    : nullptr;
-    if (cv && _scenario.valid())
+    // Bind in the update traversal (before it reaches the distance field, so that its seeds
+    // exist in time) or, for viewers without one, in the first cull.
+    const bool update = nv.getVisitorType() == osg::NodeVisitor::UPDATE_VISITOR;
+    if ((update || cv) && _scenario.valid())
     {
         std::lock_guard<std::mutex> lock(_mutex);
         if (needsBind())
@@ -106,7 +155,7 @@ void LoANode::traverse(osg::NodeVisitor& nv)
                 OSG_WARN << "osgLoA::LoANode: " << e.what() << "; drawing the model unstyled" << std::endl;
             }
         }
-        if (_evaluator->isBound())
+        if (cv && _evaluator->isBound())
         {
             const auto& features = _evaluator->features();
             for (std::size_t i = 0; i < features.size(); ++i)
@@ -127,6 +176,8 @@ void LoANode::traverse(osg::NodeVisitor& nv)
             _lastFrame = nv.getFrameStamp() ? nv.getFrameStamp()->getFrameNumber() : 0;
         }
     }
+    if (_distanceField.valid() && (cv || nv.getVisitorType() == osg::NodeVisitor::UPDATE_VISITOR))
+        _distanceField->accept(nv);
     osg::Group::traverse(nv);
 }
 

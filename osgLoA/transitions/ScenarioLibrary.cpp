@@ -1,6 +1,7 @@
 // ScenarioLibrary: the paper's usage scenarios in code, library directories, scenario files.
 #include <osgLoA/transitions/ScenarioLibrary>
 
+#include <osgLoA/transitions/LoANode>
 #include <osgLoA/util/AtomicFile>
 
 #include <osgDB/FileNameUtils>
@@ -144,8 +145,9 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
                                     "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
                                     "3:1 with view distance); landmarks keep their detail.");
         addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), new M(M::VIEW_DISTANCE, 200.0, 1200.0, 1.0)},
-                     "photorealistic", "cartographic", 0.4f, 0.6f, osg::Vec2f(0.0f, 0.79f));
-        auto landmarks = config("landmarks", "photorealistic", kObjectTypes, TransitionConfiguration::OBJECT,
+                     "photorealistic", "cartographic", 0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
+        TransitionConfiguration::FeatureTypes allTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes));
+        auto landmarks = config("landmarks", "photorealistic", allTypes, TransitionConfiguration::OBJECT,
                                 BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
         landmarks->setInterestRange(osg::Vec2f(0.8f, 1.0f));
         landmarks->addMetric(new M(M::FEATURE_INTEREST, 0.0, 0.0));
@@ -282,6 +284,11 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::readFile(const std::string& path)
         throw ScenarioError("cannot read scenario file '" + path + "'" +
                             (rr.message().empty() ? std::string() : ": " + rr.message()));
     osg::ref_ptr<UsageScenario> s = dynamic_cast<UsageScenario*>(rr.getObject());
+    if (LoANode* node = dynamic_cast<LoANode*>(rr.getObject()))
+    {
+        s = node->getScenario();
+        if (!s) throw ScenarioError("'" + path + "' holds an osgLoA::LoANode without a scenario");
+    }
     if (!s)
         throw ScenarioError("'" + path + "' holds a " + rr.getObject()->className() +
                             ", not an osgLoA::UsageScenario");
@@ -295,8 +302,12 @@ void ScenarioLibrary::writeFile(const UsageScenario& scenario, const std::string
         throw ScenarioError("'" + path + "' is not a scenario file name (use .osgt, .osgb or .osgx)");
     try
     {
-        AtomicFile::write(path,
-                          [&](const std::string& tmp) { return osgDB::writeObjectFile(scenario, tmp); });
+        // The scenario travels in an empty LoA node: a node file, which the stock osgconv can
+        // convert (OSG 3.6.5's osgconv crashes on files that hold no node).
+        osg::ref_ptr<LoANode> node = new LoANode;
+        node->setName(scenario.getName());
+        node->setScenario(const_cast<UsageScenario*>(&scenario));
+        AtomicFile::write(path, [&](const std::string& tmp) { return osgDB::writeNodeFile(*node, tmp); });
     }
     catch (const std::exception& e)
     {

@@ -71,7 +71,10 @@ bool TransitionConfiguration::matches(const Feature& feature, float staticIntere
         return false;
     const float lod = feature.getLod();
     if (lod >= 0.0f && (lod < _lodRange.x() || lod > _lodRange.y())) return false;
-    return staticInterest >= _interestRange.x() && staticInterest <= _interestRange.y();
+    // Half-open like the hard fades, [min, max), so that successive scopes never overlap;
+    // a scope reaching 1 includes 1.
+    return staticInterest >= _interestRange.x() &&
+           (staticInterest < _interestRange.y() || (_interestRange.y() >= 1.0f && staticInterest <= 1.0f));
 }
 
 SaliencyMetric* TransitionConfiguration::addMetric(SaliencyMetric* metric)
@@ -186,7 +189,7 @@ std::vector<std::string> TransitionConfiguration::validate() const
           << "] is inverted or not finite";
         problems.push_back(s.str());
     }
-    if (!finite2(_interestRange) || _interestRange.x() > _interestRange.y() || _interestRange.x() < 0.0f ||
+    if (!finite2(_interestRange) || _interestRange.x() >= _interestRange.y() || _interestRange.x() < 0.0f ||
         _interestRange.y() > 1.0f)
     {
         std::ostringstream s;

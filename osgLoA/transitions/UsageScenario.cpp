@@ -2,9 +2,32 @@
 #include <osgLoA/transitions/UsageScenario>
 
 #include <set>
+#include <sstream>
 
 namespace osgLoA
 {
+
+namespace
+{
+// True when every configuration combines the same metrics the same way.
+bool sameMetrics(const std::vector<const TransitionConfiguration*>& configs)
+{
+    for (const TransitionConfiguration* c : configs)
+    {
+        const TransitionConfiguration* a = configs.front();
+        if (c->getCombination() != a->getCombination() || c->getMetrics().size() != a->getMetrics().size())
+            return false;
+        for (const auto& m : c->getMetrics())
+        {
+            const SaliencyMetric* o = m.valid() ? a->getMetric(m->getKind()) : nullptr;
+            if (!o || o->getNear() != m->getNear() || o->getFar() != m->getFar() ||
+                o->getWeight() != m->getWeight())
+                return false;
+        }
+    }
+    return true;
+}
+} // namespace
 
 UsageScenario::UsageScenario() = default;
 
@@ -87,6 +110,45 @@ UsageScenario::Validation UsageScenario::validate() const
             for (FeatureType t : c->getFeatureTypes())
                 drawn.insert(t);
     }
+    // Gaps: for each type and static interest, the configurations in scope; when they all use
+    // the same metrics (so one interest axis is shared), interest values where every weight is
+    // 0 leave those features undrawn.
+    for (FeatureType t : kFeatureTypes)
+        for (int si = 0; si <= 10 && drawn.count(t); ++si)
+        {
+            const float staticInterest = si / 10.0f;
+            std::vector<const TransitionConfiguration*> inScope;
+            for (const auto& c : _configurations)
+                if (c.valid() && c->hasFeatureType(t) && c->getSubTypes().empty() &&
+                    staticInterest >= c->getInterestRange().x() &&
+                    staticInterest <= c->getInterestRange().y())
+                    inScope.push_back(c.get());
+            if (inScope.empty())
+            {
+                v.warnings.push_back(std::string(toString(t)) + " features of static interest " +
+                                     std::to_string(si / 10) + "." + std::to_string(si % 10) +
+                                     " are in no configuration's scope: they will not be drawn");
+                break;
+            }
+            if (!sameMetrics(inScope)) continue;
+            int gapBegin = -1;
+            for (int k = 0; k <= 1000; ++k)
+            {
+                float sum = 0.0f;
+                for (const TransitionConfiguration* c : inScope)
+                    if (c->getStyle() != "hidden") sum += c->getBlendFunction().weight(k / 1000.0f);
+                if (sum <= 0.0f && gapBegin < 0) gapBegin = k;
+                if ((sum > 0.0f || k == 1000) && gapBegin >= 0)
+                {
+                    std::ostringstream w;
+                    w << toString(t) << " features get no style at interest " << gapBegin / 1000.0f << " to "
+                      << (sum > 0.0f ? (k - 1) : k) / 1000.0f << ": no fade range covers it";
+                    v.warnings.push_back(w.str());
+                    gapBegin = -1;
+                    k = 1001;
+                }
+            }
+        }
     for (FeatureType t : kFeatureTypes)
         if (!_configurations.empty() && !drawn.count(t))
             v.warnings.push_back(std::string("no configuration draws ") + toString(t) +
