@@ -107,12 +107,9 @@ TEST(LoANodeTest, BindsLazilyAndEvaluatesForAnEye)
     EXPECT_EQ(node->getEvaluator()->getBoundRevision(), node->getScenario()->getRevision());
 }
 
-// DISABLED until LoANode also overrides addChild (the lead's call; LoANode is being changed):
-// osg::Group::addChild calls Group::insertChild qualified, not through the virtual, so
-// LoANode::insertChild never sees children added with addChild (the usual way) and the node
-// keeps evaluating a stale FeatureIndex. One-line fix in LoANode:
-//   bool addChild(osg::Node* child) override { _childrenChanged = true; return osg::Group::addChild(child); }
-TEST(LoANodeTest, DISABLED_AddChildIsPickedUp)
+// osg::Group::addChild calls Group::insertChild qualified, not through the virtual, so LoANode
+// must override addChild itself for children added the usual way to re-index the features.
+TEST(LoANodeTest, AddChildIsPickedUp)
 {
     osg::ref_ptr<LoANode> node = new LoANode;
     node->addChild(box(1, FeatureType::Building, osg::Vec3(195, -5, 0), osg::Vec3(205, 5, 10)).get());

@@ -593,7 +593,7 @@ void DistanceField::checkCapabilities(const GLCapabilities& caps, int width, int
     if (!caps.compatibilityProfile)
         missing.push_back("a compatibility profile (the passes draw with gl_Vertex)");
     if (!caps.versionAtLeast(3, 0) && !caps.hasExtension("GL_EXT_texture_integer"))
-        missing.push_back("integer textures as render targets (R32UI; GL_EXT_texture_integer)");
+        missing.push_back("integer textures as render targets (RGBA32UI; GL_EXT_texture_integer)");
     if (!caps.versionAtLeast(3, 0) &&
         !(caps.hasExtension("GL_ARB_texture_float") && caps.hasExtension("GL_ARB_color_buffer_float")))
         missing.push_back("float render targets (R32F; GL_ARB_texture_float, GL_ARB_color_buffer_float)");

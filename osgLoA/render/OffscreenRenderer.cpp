@@ -186,13 +186,14 @@ void OffscreenRenderer::checkScenePrograms()
     std::vector<ShaderDiagnostic> all;
     if (!programs.empty())
     {
+        // Left current afterwards: osgViewer assumes the context it made current in the last
+        // frame still is, so releasing it here would make the next frame render without one.
         _context->makeCurrent();
         for (osg::Program* p : programs)
         {
             auto d = ShaderLibrary::check(*p, *_context->getState());
             all.insert(all.end(), d.begin(), d.end());
         }
-        _context->releaseContext();
     }
     if (!all.empty()) throw ShaderError(all);
     _programsChecked = true;

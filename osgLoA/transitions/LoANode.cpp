@@ -25,6 +25,12 @@ void LoANode::setScenario(UsageScenario* scenario)
     _boundScenario = nullptr;
 }
 
+bool LoANode::addChild(osg::Node* child)
+{
+    _childrenChanged = true;
+    return osg::Group::addChild(child);
+}
+
 bool LoANode::insertChild(unsigned int index, osg::Node* child)
 {
     _childrenChanged = true;
