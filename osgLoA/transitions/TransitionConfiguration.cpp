@@ -206,6 +206,11 @@ std::vector<std::string> TransitionConfiguration::validate() const
             problems.push_back(label + "a null saliency metric");
             continue;
         }
+        if (int(m->getKind()) < 0 || int(m->getKind()) >= SaliencyMetric::kNumKinds)
+        {
+            problems.push_back(label + "a saliency metric of unknown kind " + std::to_string(int(m->getKind())));
+            continue;
+        }
         if (seen[m->getKind()])
             problems.push_back(label + "two " + SaliencyMetric::toString(m->getKind()) + " metrics");
         seen[m->getKind()] = true;
