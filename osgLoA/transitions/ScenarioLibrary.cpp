@@ -11,7 +11,10 @@
 #include <osgDB/WriteFile>
 
 #include <algorithm>
+#include <cctype>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #ifndef OSGLOA_SCENARIO_SOURCE_DIR
 #define OSGLOA_SCENARIO_SOURCE_DIR ""
@@ -276,23 +279,73 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::readFile(const std::string& path)
         throw ScenarioError("'" + path + "' is not a scenario file (expected .osgt, .osgb or .osgx)");
     if (osgDB::fileType(path) != osgDB::REGULAR_FILE)
         throw ScenarioError("scenario file '" + path + "' not found");
-    osgDB::ReaderWriter* rw =
-        osgDB::Registry::instance()->getReaderWriterForExtension(osgDB::getLowerCaseFileExtension(path));
-    if (!rw) throw ScenarioError("no osgDB reader for '" + path + "' (is the osg2 plugin installed?)");
-    osgDB::ReaderWriter::ReadResult rr = rw->readObject(path);
+    std::ifstream in(path.c_str(), std::ios::binary);
+    std::ostringstream data;
+    data << in.rdbuf();
+    if (!in) throw ScenarioError("cannot read scenario file '" + path + "'");
+    osg::ref_ptr<UsageScenario> s = readData(data.str(), path);
+    if (s->getName().empty()) s->setName(osgDB::getNameLessExtension(osgDB::getSimpleFileName(path)));
+    return s;
+}
+
+std::string ScenarioLibrary::checkAsciiStructure(const std::string& text)
+{
+    bool inString = false, sawObject = false;
+    long depth = 0;
+    char last = 0;
+    for (std::size_t i = 0; i < text.size(); ++i)
+    {
+        const char c = text[i];
+        if (inString)
+        {
+            if (c == '\\')
+                ++i; // an escaped character
+            else if (c == '"')
+                inString = false;
+            continue;
+        }
+        if (c == '"')
+            inString = true;
+        else if (c == '{')
+            ++depth, sawObject = true;
+        else if (c == '}' && --depth < 0)
+            return "a '}' closes no object";
+        if (!std::isspace(static_cast<unsigned char>(c))) last = c;
+    }
+    if (inString) return "the text ends inside a quoted string";
+    if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";
+    if (!sawObject) return "the text holds no object";
+    if (last != '}') return "the text does not end with its last object's '}'";
+    return std::string();
+}
+
+osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, const std::string& label)
+{
+    // osgdb_osg reads text whose first word is "#Ascii" with its ASCII reader (binary files
+    // start with a magic number, XML ones with "<?xml"); only that reader needs the check.
+    std::string firstWord;
+    std::istringstream(data.substr(0, 64)) >> firstWord;
+    if (firstWord == "#Ascii")
+    {
+        const std::string problem = checkAsciiStructure(data);
+        if (!problem.empty()) throw ScenarioError("malformed scenario file '" + label + "': " + problem);
+    }
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    if (!rw) throw ScenarioError("no osgDB reader for scenario files (is the osg2 plugin installed?)");
+    std::istringstream in(data);
+    osgDB::ReaderWriter::ReadResult rr = rw->readObject(in);
     if (!rr.success() || !rr.getObject())
-        throw ScenarioError("cannot read scenario file '" + path + "'" +
+        throw ScenarioError("cannot read scenario file '" + label + "'" +
                             (rr.message().empty() ? std::string() : ": " + rr.message()));
     osg::ref_ptr<UsageScenario> s = dynamic_cast<UsageScenario*>(rr.getObject());
     if (LoANode* node = dynamic_cast<LoANode*>(rr.getObject()))
     {
         s = node->getScenario();
-        if (!s) throw ScenarioError("'" + path + "' holds an osgLoA::LoANode without a scenario");
+        if (!s) throw ScenarioError("'" + label + "' holds an osgLoA::LoANode without a scenario");
     }
     if (!s)
-        throw ScenarioError("'" + path + "' holds a " + rr.getObject()->className() +
+        throw ScenarioError("'" + label + "' holds a " + rr.getObject()->className() +
                             ", not an osgLoA::UsageScenario");
-    if (s->getName().empty()) s->setName(osgDB::getNameLessExtension(osgDB::getSimpleFileName(path)));
     return s;
 }
 

@@ -1,4 +1,5 @@
-// libFuzzer target: arbitrary bytes as a scenario file. The bytes go through OSG's own reader
+// libFuzzer target: arbitrary bytes as a scenario file, read by ScenarioLibrary::readData (the
+// guarded entry every scenario reader uses), which hands them to OSG's own reader
 // for .osgt/.osgb/.osgx (osgdb_osg's ReaderWriter, which tells the three formats apart by
 // their header) with our serializer wrappers (osgdb_serializers_osgloa); a scenario that comes
 // out (a UsageScenario, or the one a LoANode carries, as ScenarioLibrary::readFile accepts) is
@@ -11,6 +12,7 @@
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioEvaluator>
+#include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/transitions/UsageScenario>
 
 #include <osg/Geode>
@@ -131,13 +133,18 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-    static osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
     static Scene scene;
 
-    std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
-    osgDB::ReaderWriter::ReadResult rr = rw->readObject(in);
-    osg::ref_ptr<UsageScenario> scenario = dynamic_cast<UsageScenario*>(rr.getObject());
-    if (LoANode* node = dynamic_cast<LoANode*>(rr.getObject())) scenario = node->getScenario();
+    // The guarded entry point every reader of scenario files goes through.
+    osg::ref_ptr<UsageScenario> scenario;
+    try
+    {
+        scenario = ScenarioLibrary::readData(std::string(reinterpret_cast<const char*>(data), size), "fuzz");
+    }
+    catch (const ScenarioError&)
+    {
+        return 0;
+    }
     if (!scenario) return 0;
     if (!scenario->validate().ok()) return 0;
 
