@@ -17,9 +17,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -568,6 +573,218 @@ TEST(ScenarioSerializationTest, DISABLED_MalformedFilesThatTheReaderDoesNotSurvi
     // A count far beyond the list.
     writeBytes(dir + "/count.osgt", replaced(text, "Configurations 4 {", "Configurations 4000000000 {"));
     expectScenarioError(dir + "/count.osgt", "huge list count");
+}
+
+// --- malformed values and counts (the wrappers' checked reads) ----------------------------------
+
+namespace
+{
+/** readFile(path) fails with a ScenarioError that names the file and says `problem`, in well
+ *  under a second (a count that is believed loops for minutes; an enum that is believed reads). */
+void expectErrorSaying(const std::string& path, const std::string& problem)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const ReadOutcome o = readInChild(path);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 1.0) << path << " took " << seconds << " s: " << describe(o);
+    ASSERT_EQ(o.kind, ReadOutcome::SCENARIO_ERROR) << path << ": " << describe(o);
+    EXPECT_NE(o.what.find(path), std::string::npos) << o.what;
+    EXPECT_NE(o.what.find(problem), std::string::npos)
+        << path << ": expected '" << problem << "' in\n  " << o.what;
+}
+
+/** Where the bytes of v (as the binary writer stores it: native order) stand in data; the value
+ *  must occur exactly once, so that patching next to it hits the field meant. */
+template <class T> std::size_t uniqueOffsetOf(const std::string& data, T v)
+{
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    const std::string needle(bytes, sizeof(T));
+    const std::size_t at = data.find(needle);
+    EXPECT_NE(at, std::string::npos) << "value " << v << " not in the binary file";
+    EXPECT_EQ(data.find(needle, at + 1), std::string::npos) << "value " << v << " twice in the binary file";
+    return at;
+}
+
+template <class T> std::string patched(std::string data, std::size_t at, T v)
+{
+    std::memcpy(&data[at], &v, sizeof(T));
+    return data;
+}
+} // namespace
+
+// Each ub-* and oom-* input the fuzzer found (tests/fuzz/crashes; the hang-* ones are
+// ScenarioLibrary's) fails to read, quickly, with a message that names the problem.
+TEST(ScenarioSerializationTest, FuzzReproducersFailQuicklyNamingTheProblem)
+{
+    const std::string crashes = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes";
+    const std::map<std::string, std::string> problems = {
+        {"oom-huge-list-count.osgt",
+         "UsageScenario: Configurations count 4000000000 is above the limit of 65536"},
+        {"ub-fuzzer-found-kind-150.osgt", "SaliencyMetric: unknown Kind '150'"},
+        {"ub-interpolation-5-invalid-enum.osgt", "TransitionConfiguration: unknown Interpolation '5'"},
+        {"ub-metric-kind-7-indexes-seen.osgt", "SaliencyMetric: unknown Kind '7'"},
+        {"ub-metric-kind-9-invalid-enum.osgt", "SaliencyMetric: unknown Kind '9'"},
+    };
+    std::set<std::string> seen;
+    for (const std::string& f : osgDB::getDirectoryContents(crashes))
+    {
+        if (f.rfind("ub-", 0) != 0 && f.rfind("oom-", 0) != 0) continue;
+        seen.insert(f);
+        SCOPED_TRACE(f);
+        const auto known = problems.find(f);
+        // A reproducer added later: any checked read's message will do.
+        expectErrorSaying(crashes + "/" + f, known != problems.end() ? known->second : ": ");
+    }
+    for (const auto& kv : problems)
+        EXPECT_EQ(seen.count(kv.first), 1u) << "tests/fuzz/crashes/" << kv.first << " is gone";
+}
+
+// Enums read by name only, counts up to a limit, list entries of the element class only
+// (.osgt and .osgx).
+TEST(ScenarioSerializationTest, MalformedValuesInTextFilesNameTheProblem)
+{
+    const std::string dir = loatest::freshDirectory("ScenarioSerializationTest/malformed-text");
+    const std::string text = routeText(dir);
+    const struct
+    {
+        const char* name;
+        const char* from;
+        const char* to;
+        const char* problem;
+    } cases[] = {
+        // Enums: an unknown name, a number out of range, and a number at all (text files name
+        // the value; OSG's writer prints a number only for a value it has no name for).
+        {"kind-name", "Kind REGION", "Kind LOUDNESS", "SaliencyMetric: unknown Kind 'LOUDNESS'"},
+        {"kind-number", "Kind REGION", "Kind 7", "SaliencyMetric: unknown Kind '7'"},
+        {"kind-valid-number", "Kind REGION", "Kind 2", "SaliencyMetric: unknown Kind '2'"},
+        {"kind-empty", "Kind REGION", "Kind \"\"", "SaliencyMetric: unknown Kind '\"\"'"},
+        {"interpolation", "Interpolation FRAGMENT", "Interpolation 9",
+         "TransitionConfiguration: unknown Interpolation '9'"},
+        {"combination", "Interpolation FRAGMENT \n", "Interpolation FRAGMENT \n Combination MEDIAN \n",
+         "TransitionConfiguration: unknown Combination 'MEDIAN'"},
+        {"shape", "Shape POLYLINE", "Shape TRIANGLE", "RegionOfInterest: unknown Shape 'TRIANGLE'"},
+        {"shape-lowercase", "Shape POLYLINE", "Shape polyline", "RegionOfInterest: unknown Shape 'polyline'"},
+        // Counts above the limits.
+        {"configurations", "Configurations 4 {", "Configurations 4000000000 {",
+         "UsageScenario: Configurations count 4000000000 is above the limit of 65536"},
+        {"regions", "Regions 1 {", "Regions 65537 {",
+         "UsageScenario: Regions count 65537 is above the limit of 65536"},
+        {"metrics", "Metrics 1 {", "Metrics 4294967295 {",
+         "TransitionConfiguration: Metrics count 4294967295 is above the limit of 65536"},
+        {"vertices", "Vertices 6 {", "Vertices 1048577 {",
+         "RegionOfInterest: Vertices count 1048577 is above the limit of 1048576"},
+        {"negative-count", "Vertices 6 {", "Vertices -1 {",
+         "RegionOfInterest: Vertices count 4294967295 is above the limit of 1048576"},
+        // Entries of another class.
+        {"node-entry", "osgLoA::TransitionConfiguration {", "osg::Node {",
+         "UsageScenario: Configurations entry 0: expected an osgLoA::TransitionConfiguration, got osg::Node"},
+        {"metric-region", "osgLoA::RegionOfInterest {", "osgLoA::SaliencyMetric {",
+         "UsageScenario: Regions entry 0: expected an osgLoA::RegionOfInterest, got osgLoA::SaliencyMetric"},
+        {"unknown-class", "osgLoA::SaliencyMetric {", "osgLoA::Loudness {",
+         "TransitionConfiguration: Metrics entry 0: expected an osgLoA::SaliencyMetric, got no object"},
+        {"null-entry", "Metrics 1 {", "Metrics 2 {\n NULL ",
+         "TransitionConfiguration: Metrics entry 0: expected an osgLoA::SaliencyMetric, got no object"},
+        {"scenario-group", "osgLoA::UsageScenario {", "osg::Group {",
+         "LoANode: Scenario: expected an osgLoA::UsageScenario, got osg::Group"},
+    };
+    for (const auto& c : cases)
+    {
+        SCOPED_TRACE(c.name);
+        const std::string path = dir + "/" + c.name + ".osgt";
+        writeBytes(path, replaced(text, c.from, c.to));
+        expectErrorSaying(path, c.problem);
+    }
+    // Counts under the limits but above the lists' lengths: the read stops at the first entry
+    // that is not there (an error, quickly), not after the count. (OSG's text reader takes any
+    // word for a number, "}" for 0, so a vertex count only a little too large reads the words
+    // after the list as vertices: not harmful, and not checked here.)
+    writeBytes(dir + "/count-plus-one.osgt", replaced(text, "Configurations 4 {", "Configurations 5 {"));
+    expectErrorSaying(dir + "/count-plus-one.osgt", "cannot read scenario file");
+    writeBytes(dir + "/count-at-limit.osgt", replaced(text, "Configurations 4 {", "Configurations 65536 {"));
+    expectErrorSaying(dir + "/count-at-limit.osgt", "cannot read scenario file");
+    writeBytes(dir + "/vertices-at-limit.osgt", replaced(text, "Vertices 6 {", "Vertices 1048576 {"));
+    expectErrorSaying(dir + "/vertices-at-limit.osgt", "cannot read scenario file");
+
+    // The same checks read .osgx.
+    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgx");
+    const std::string xml = fileBytes(dir + "/route.osgx");
+    ASSERT_EQ(readInChild(dir + "/route.osgx").kind, ReadOutcome::READ);
+    writeBytes(dir + "/kind.osgx",
+               replaced(xml, "<Kind attribute=\"REGION\" />", "<Kind attribute=\"7\" />"));
+    expectErrorSaying(dir + "/kind.osgx", "SaliencyMetric: unknown Kind '7'");
+    writeBytes(dir + "/configurations.osgx", replaced(xml, "<Configurations attribute=\"4\">",
+                                                      "<Configurations attribute=\"4000000000\">"));
+    expectErrorSaying(dir + "/configurations.osgx",
+                      "UsageScenario: Configurations count 4000000000 is above the limit of 65536");
+}
+
+// The same in .osgb files: enums are stored as numbers (as OSG's enum serializer stores them),
+// which must be values of the enum; counts are bounded.
+TEST(ScenarioSerializationTest, MalformedValuesInBinaryFilesNameTheProblem)
+{
+    const std::string dir = loatest::freshDirectory("ScenarioSerializationTest/malformed-binary");
+    // Marker values next to the fields to patch: the description ends right before the
+    // interest's "has object" byte (no interest: 0) and the configuration count; the metric's
+    // kind right before its near value; the region's shape and vertex count right before its
+    // first vertex.
+    const std::string marker = "count follows @@";
+    const double nearValue = 123.456789, vertexX = -4321.0987654;
+    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::createBuiltin("route");
+    s->setDescription(marker);
+    s->setInterest(nullptr);
+    s->getConfigurations()[0]->getMetrics()[0]->setNear(nearValue);
+    s->getRegions()[0]->getVertices()[0].x() = vertexX;
+    const std::string path = dir + "/route.osgb";
+    ScenarioLibrary::writeFile(*s, path);
+    const std::string binary = fileBytes(path);
+    ASSERT_FALSE(binary.empty());
+    const std::size_t markerAt = binary.find(marker);
+    ASSERT_NE(markerAt, std::string::npos);
+    const std::size_t countAt = markerAt + marker.size() + 1;
+    const std::size_t kindAt = uniqueOffsetOf(binary, nearValue) - sizeof(std::int32_t);
+    const std::size_t verticesAt = uniqueOffsetOf(binary, vertexX) - sizeof(std::uint32_t);
+    const std::size_t shapeAt = verticesAt - sizeof(std::int32_t);
+    ASSERT_FALSE(testing::Test::HasFailure());
+
+    // The offsets are right: the file as written, and with a valid kind patched in, read back
+    // what they hold.
+    osg::ref_ptr<UsageScenario> back = ScenarioLibrary::readFile(path);
+    EXPECT_EQ(back->getConfigurations().size(), 4u);
+    EXPECT_EQ(back->getConfigurations()[0]->getMetrics()[0]->getKind(), M::REGION);
+    EXPECT_EQ(back->getRegions()[0]->getShape(), R::POLYLINE);
+    EXPECT_EQ(back->getRegions()[0]->getVertices().size(), 6u);
+    writeBytes(dir + "/focus.osgb", patched(binary, kindAt, std::int32_t(M::FOCUS)));
+    back = ScenarioLibrary::readFile(dir + "/focus.osgb");
+    EXPECT_EQ(back->getConfigurations()[0]->getMetrics()[0]->getKind(), M::FOCUS);
+    EXPECT_EQ(back->getConfigurations()[0]->getMetrics()[0]->getNear(), nearValue);
+
+    const struct
+    {
+        const char* name;
+        std::size_t at;
+        std::uint32_t value;
+        const char* problem;
+    } cases[] = {
+        {"kind-7", kindAt, 7u, "SaliencyMetric: unknown Kind '7'"},
+        {"kind-minus-1", kindAt, 0xffffffffu, "SaliencyMetric: unknown Kind '-1'"},
+        {"shape-3", shapeAt, 3u, "RegionOfInterest: unknown Shape '3'"},
+        {"configurations", countAt, 4000000000u,
+         "UsageScenario: Configurations count 4000000000 is above the limit of 65536"},
+        {"vertices", verticesAt, 0xffffffffu,
+         "RegionOfInterest: Vertices count 4294967295 is above the limit of 1048576"},
+    };
+    for (const auto& c : cases)
+    {
+        SCOPED_TRACE(c.name);
+        const std::string patchedPath = dir + "/" + c.name + ".osgb";
+        writeBytes(patchedPath, patched(binary, c.at, c.value));
+        expectErrorSaying(patchedPath, c.problem);
+    }
+    // One configuration more than the file holds: the read fails at the first entry that is not
+    // one (the bytes after the list), quickly.
+    writeBytes(dir + "/count-plus-one.osgb", patched(binary, countAt, std::uint32_t(5)));
+    expectErrorSaying(dir + "/count-plus-one.osgb", "cannot read scenario file");
 }
 
 // --- ScenarioLibrary ------------------------------------------------------------------------

@@ -12,13 +12,20 @@ namespace osgLoA
 
 namespace
 {
-double segmentDistance(const osg::Vec2d& p, const osg::Vec2d& a, const osg::Vec2d& b)
+/** The squared distance from p to the segment ab (distance() takes one square root of the
+ *  smallest: the root is monotonic and correctly rounded, so that is the smallest root). */
+double segmentDistance2(const osg::Vec2d& p, const osg::Vec2d& a, const osg::Vec2d& b)
 {
     const osg::Vec2d ab = b - a;
     const double len2 = ab.length2();
-    double t = len2 > 0.0 ? ((p - a) * ab) / len2 : 0.0;
-    t = std::min(1.0, std::max(0.0, t));
-    return (p - (a + ab * t)).length();
+    const double dot = (p - a) * ab;
+    // The nearest point is a + ab t with t = dot / len2 clamped to [0, 1]; the division only
+    // where it is not clamped. The same values as clamping the quotient: it is <= 0 (or NaN:
+    // 0) exactly when dot is, and >= 1 when dot >= len2.
+    if (!(len2 > 0.0) || !(dot > 0.0)) return (p - (a + ab * 0.0)).length2();
+    if (dot >= len2) return (p - (a + ab)).length2();
+    const double t = dot / len2;
+    return (p - (a + ab * t)).length2();
 }
 
 // Even-odd rule: a ray towards +x crosses the ring an odd number of times from inside.
@@ -66,24 +73,26 @@ void RegionOfInterest::setRadius(double radius)
 double RegionOfInterest::distance(const osg::Vec2d& p) const
 {
     if (_vertices.size() < minimumVertices(_shape)) return std::numeric_limits<double>::infinity();
-    double d = std::numeric_limits<double>::infinity();
+    // Squared distances, one square root at the end.
+    double d2 = std::numeric_limits<double>::infinity();
+    const std::size_t n = _vertices.size();
     switch (_shape)
     {
     case CIRCLES:
         for (const osg::Vec2d& c : _vertices)
-            d = std::min(d, (p - c).length());
+            d2 = std::min(d2, (p - c).length2());
         break;
     case POLYLINE:
-        for (std::size_t i = 0; i + 1 < _vertices.size(); ++i)
-            d = std::min(d, segmentDistance(p, _vertices[i], _vertices[i + 1]));
+        for (std::size_t i = 0; i + 1 < n; ++i)
+            d2 = std::min(d2, segmentDistance2(p, _vertices[i], _vertices[i + 1]));
         break;
     case POLYGON:
         if (insideRing(p, _vertices)) return 0.0;
-        for (std::size_t i = 0; i < _vertices.size(); ++i)
-            d = std::min(d, segmentDistance(p, _vertices[i], _vertices[(i + 1) % _vertices.size()]));
+        for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+            d2 = std::min(d2, segmentDistance2(p, _vertices[j], _vertices[i]));
         break;
     }
-    return std::max(0.0, d - _radius);
+    return std::max(0.0, std::sqrt(d2) - _radius);
 }
 
 osg::BoundingBoxd RegionOfInterest::bound() const

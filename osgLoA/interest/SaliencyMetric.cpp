@@ -32,23 +32,75 @@ double regionDistance(const osg::Vec3d& p, const SaliencyView& view)
     return d;
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
 double degrees(double radians)
 {
-    return radians * 180.0 / 3.14159265358979323846;
+    return radians * 180.0 / kPi;
+}
+
+/** The horizontal distance (x, y) from the eye to p. */
+double horizontalDistance(const osg::Vec3d& p, const osg::Vec3d& eye)
+{
+    const double dx = p.x() - eye.x(), dy = p.y() - eye.y();
+    return std::sqrt(dx * dx + dy * dy);
+}
+
+/** The horizontal distances from the eye to the nearest and the farthest point of the box. */
+void horizontalRange(const osg::BoundingBoxd& box, const osg::Vec3d& e, double& hMin, double& hMax)
+{
+    const double hx = std::max(0.0, std::max(box.xMin() - e.x(), e.x() - box.xMax()));
+    const double hy = std::max(0.0, std::max(box.yMin() - e.y(), e.y() - box.yMax()));
+    hMin = std::sqrt(hx * hx + hy * hy);
+    const double fx = std::max(std::fabs(e.x() - box.xMin()), std::fabs(e.x() - box.xMax()));
+    const double fy = std::max(std::fabs(e.y() - box.yMin()), std::fabs(e.y() - box.yMax()));
+    hMax = std::sqrt(fx * fx + fy * fy);
+}
+
+/** REGION and FOCUS over a box from the value q at its centre: the distance changes no faster
+ *  than the point moves, so it stays within the box's horizontal (REGION) or full (FOCUS)
+ *  half-diagonal of q. */
+void centreRange(SaliencyMetric::Kind kind, const osg::BoundingBoxd& box, double q, double& qMin,
+                 double& qMax)
+{
+    const osg::Vec3d half = (box._max - box._min) * 0.5;
+    const double r =
+        kind == SaliencyMetric::REGION ? std::sqrt(half.x() * half.x() + half.y() * half.y()) : half.length();
+    qMin = std::max(0.0, q - r);
+    qMax = q + r;
 }
 } // namespace
 
 SaliencyMetric::SaliencyMetric() = default;
 
 SaliencyMetric::SaliencyMetric(Kind kind, double nearValue, double farValue, double weight)
-    : _kind(kind), _near(nearValue), _far(farValue), _weight(weight)
+    : _kind(kind), _weight(weight)
 {
+    setNear(nearValue);
+    setFar(farValue);
 }
 
 SaliencyMetric::SaliencyMetric(const SaliencyMetric& other, const osg::CopyOp& copyop)
     : osg::Object(other, copyop), _kind(other._kind), _near(other._near), _far(other._far),
-      _weight(other._weight)
+      _weight(other._weight), _tanNear(other._tanNear), _tanFar(other._tanFar)
 {
+}
+
+double SaliencyMetric::tangentOf(double angle)
+{
+    return angle >= 0.0 && angle <= 89.0 ? std::tan(angle * kPi / 180.0) : -1.0;
+}
+
+double SaliencyMetric::angleInterest(double dz, double h) const
+{
+    // The angle atan2(dz, h) is at most near where dz <= h tan(near) and at least far where
+    // dz >= h tan(far): there the ramp is saturated and needs no arc tangent. The relative
+    // margin of 1e-9 (far above the rounding of atan2 and tan, for angles up to 89 degrees)
+    // leaves the points right at the ends of the ramp to the exact path, so the result is the
+    // same as ramp(angle); NaN fails every comparison and takes the exact path too.
+    if (_tanNear >= 0.0 && dz <= h * _tanNear * (1.0 - 1e-9)) return 1.0;
+    if (_tanFar >= 0.0 && _near <= _far && dz >= h * _tanFar * (1.0 + 1e-9)) return 0.0;
+    return ramp(degrees(std::atan2(dz, h)), _near, _far);
 }
 
 double SaliencyMetric::measure(const osg::Vec3d& p, const SaliencyView& view, double featureInterest) const
@@ -58,10 +110,7 @@ double SaliencyMetric::measure(const osg::Vec3d& p, const SaliencyView& view, do
     case VIEW_DISTANCE:
         return (p - view.eye).length();
     case VIEW_ANGLE:
-    {
-        const double h = std::hypot(p.x() - view.eye.x(), p.y() - view.eye.y());
-        return degrees(std::atan2(std::max(0.0, view.eye.z() - p.z()), h));
-    }
+        return degrees(std::atan2(std::max(0.0, view.eye.z() - p.z()), horizontalDistance(p, view.eye)));
     case REGION:
         return regionDistance(p, view);
     case FOCUS:
@@ -91,31 +140,65 @@ void SaliencyMetric::measureRange(const osg::BoundingBoxd& box, const SaliencyVi
     {
         // The angle grows with the height difference and falls with the horizontal distance,
         // so its extremes lie at the box's top/bottom and nearest/farthest horizontal points.
-        const double hx = std::max(0.0, std::max(box.xMin() - e.x(), e.x() - box.xMax()));
-        const double hy = std::max(0.0, std::max(box.yMin() - e.y(), e.y() - box.yMax()));
-        const double hMin = std::hypot(hx, hy);
-        const double fx = std::max(std::fabs(e.x() - box.xMin()), std::fabs(e.x() - box.xMax()));
-        const double fy = std::max(std::fabs(e.y() - box.yMin()), std::fabs(e.y() - box.yMax()));
-        const double hMax = std::hypot(fx, fy);
+        double hMin = 0.0, hMax = 0.0;
+        horizontalRange(box, e, hMin, hMax);
         qMin = degrees(std::atan2(std::max(0.0, e.z() - box.zMax()), hMax));
         qMax = degrees(std::atan2(std::max(0.0, e.z() - box.zMin()), hMin));
         return;
     }
     case REGION:
     case FOCUS:
-    {
-        const osg::Vec3d c = box.center();
-        const double q = measure(c, view, featureInterest);
-        const osg::Vec3d half = (box._max - box._min) * 0.5;
-        const double r = _kind == REGION ? std::hypot(half.x(), half.y()) : half.length();
-        qMin = std::max(0.0, q - r);
-        qMax = q + r;
+        centreRange(_kind, box, measure(box.center(), view, featureInterest), qMin, qMax);
         return;
-    }
     case FEATURE_INTEREST:
         qMin = qMax = featureInterest;
         return;
     }
+}
+
+double SaliencyMetric::evaluate(const osg::Vec3d& p, const SaliencyView& view, double featureInterest) const
+{
+    if (_kind == VIEW_ANGLE)
+        return angleInterest(std::max(0.0, view.eye.z() - p.z()), horizontalDistance(p, view.eye));
+    return interest(measure(p, view, featureInterest));
+}
+
+void SaliencyMetric::interestRange(const osg::BoundingBoxd& box, const SaliencyView& view,
+                                   double featureInterest, double& lo, double& hi) const
+{
+    if (_kind == VIEW_ANGLE)
+    {
+        // measureRange's extremes, turned into interest without the arc tangent where the
+        // ramp is saturated: the lowest interest at the steepest angle, the highest at the
+        // flattest.
+        const osg::Vec3d& e = view.eye;
+        double hMin = 0.0, hMax = 0.0;
+        horizontalRange(box, e, hMin, hMax);
+        lo = angleInterest(std::max(0.0, e.z() - box.zMin()), hMin);
+        hi = angleInterest(std::max(0.0, e.z() - box.zMax()), hMax);
+        return;
+    }
+    double qMin = 0.0, qMax = 0.0;
+    measureRange(box, view, featureInterest, qMin, qMax);
+    lo = interest(qMax);
+    hi = interest(qMin);
+}
+
+void SaliencyMetric::evaluateOverBox(const osg::BoundingBoxd& box, const SaliencyView& view,
+                                     double featureInterest, double& atCentre, double& lo, double& hi) const
+{
+    if (_kind == REGION || _kind == FOCUS)
+    {
+        const double q = measure(box.center(), view, featureInterest);
+        double qMin = 0.0, qMax = 0.0;
+        centreRange(_kind, box, q, qMin, qMax);
+        atCentre = interest(q);
+        lo = interest(qMax);
+        hi = interest(qMin);
+        return;
+    }
+    atCentre = evaluate(box.center(), view, featureInterest);
+    interestRange(box, view, featureInterest, lo, hi);
 }
 
 double SaliencyMetric::ramp(double q, double nearValue, double farValue)

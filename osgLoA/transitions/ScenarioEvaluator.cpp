@@ -1,6 +1,7 @@
 // ScenarioEvaluator: static matching at bind time, per-frame interest and normalized weights.
 #include <osgLoA/transitions/ScenarioEvaluator>
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -85,6 +86,36 @@ void ScenarioEvaluator::evaluate(const osg::Vec3d& eye, const unsigned char* vis
     _view.eye = eye;
     _stats = Statistics();
     const auto& configs = _scenario->getConfigurations();
+
+    // Configurations with the same combination of the same metrics give the same interest at
+    // the same point (the built-in scenarios repeat one metric set over all their levels):
+    // same[j] is the first configuration like j. Decided per frame (a few comparisons), so
+    // metrics changed since bind count as they always have; configurations past
+    // kMaxConfigurations (none in a valid scenario) are their own.
+    constexpr unsigned kMax = UsageScenario::kMaxConfigurations;
+    unsigned same[kMax];
+    const unsigned numConfigs = unsigned(std::min<std::size_t>(configs.size(), kMax));
+    for (unsigned j = 0; j < numConfigs; ++j)
+    {
+        same[j] = j;
+        for (unsigned k = 0; k < j; ++k)
+            if (same[k] == k && configs[k]->hasSameInterestAs(*configs[j]))
+            {
+                same[j] = k;
+                break;
+            }
+    }
+    auto sameAs = [&](unsigned j) { return j < numConfigs ? same[j] : j; };
+
+    // Per feature, what its earlier matches computed: interest at the point and, once a
+    // fragment match asked for it, the interest's range over the box.
+    struct Computed
+    {
+        double interest, lo, hi;
+        bool ranged;
+    };
+    Computed computed[kMax];
+
     for (std::size_t i = 0; i < _features.size(); ++i)
     {
         FeatureState& s = _features[i];
@@ -98,16 +129,43 @@ void ScenarioEvaluator::evaluate(const osg::Vec3d& eye, const unsigned char* vis
         {
             const TransitionConfiguration& c = *configs[m[k].configuration];
             const BlendFunction blend = c.getBlendFunction();
-            m[k].interest = float(c.interestAt(m[k].point, _view, s.staticInterest));
-            m[k].rawWeight = blend.weight(m[k].interest);
-            if (m[k].fragment)
+            // An earlier match of this feature with the same metrics at the same point.
+            const unsigned key = sameAs(m[k].configuration);
+            Computed* from = nullptr;
+            for (unsigned j = 0; j < k && j < kMax; ++j)
+                if (sameAs(m[j].configuration) == key && m[j].point == m[k].point)
+                {
+                    from = &computed[j];
+                    break;
+                }
+            Computed here;
+            if (from)
             {
-                double lo = 0.0, hi = 0.0;
-                c.interestRange(s.bound, _view, s.staticInterest, lo, hi);
-                m[k].mayContribute = blend.mayContribute(float(lo), float(hi));
+                // Fragment matches are evaluated at the box centre, so the earlier match's
+                // interest is the centre's; only the range may be missing.
+                if (m[k].fragment && !from->ranged)
+                {
+                    c.interestRange(s.bound, _view, s.staticInterest, from->lo, from->hi);
+                    from->ranged = true;
+                }
+                here = *from;
+            }
+            else if (m[k].fragment) // point == s.bound.center()
+            {
+                c.interestOverBox(s.bound, _view, s.staticInterest, here.interest, here.lo, here.hi);
+                here.ranged = true;
             }
             else
-                m[k].mayContribute = m[k].rawWeight > 0.0f;
+            {
+                here.interest = c.interestAt(m[k].point, _view, s.staticInterest);
+                here.lo = here.hi = 0.0;
+                here.ranged = false;
+            }
+            if (k < kMax) computed[k] = here;
+            m[k].interest = float(here.interest);
+            m[k].rawWeight = blend.weight(m[k].interest);
+            m[k].mayContribute =
+                m[k].fragment ? blend.mayContribute(float(here.lo), float(here.hi)) : m[k].rawWeight > 0.0f;
             sum += m[k].rawWeight;
             contributing += m[k].mayContribute ? 1u : 0u;
         }

@@ -23,6 +23,32 @@ bool finite2(const osg::Vec2f& v)
 {
     return std::isfinite(v.x()) && std::isfinite(v.y());
 }
+
+/** Combines metric interests one at a time, the way interestAt does. */
+struct Combiner
+{
+    double sum = 0.0, weights = 0.0, lo = 1.0, hi = 0.0;
+    void add(double weight, double v)
+    {
+        sum += weight * v;
+        weights += weight;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    double result(TransitionConfiguration::Combination c) const
+    {
+        switch (c)
+        {
+        case TransitionConfiguration::MINIMUM:
+            return lo;
+        case TransitionConfiguration::MAXIMUM:
+            return hi;
+        case TransitionConfiguration::WEIGHTED_MEAN:
+            break;
+        }
+        return weights > 0.0 ? sum / weights : 0.0;
+    }
+};
 } // namespace
 
 TransitionConfiguration::TransitionConfiguration() = default;
@@ -101,30 +127,15 @@ const SaliencyMetric* TransitionConfiguration::getMetric(SaliencyMetric::Kind ki
 double TransitionConfiguration::interestAt(const osg::Vec3d& p, const SaliencyView& view,
                                            double featureInterest) const
 {
-    double sum = 0.0, weights = 0.0;
-    double lo = 1.0, hi = 0.0;
+    Combiner c;
     bool any = false;
     for (const auto& m : _metrics)
     {
         if (!m.valid()) continue;
-        const double v = m->evaluate(p, view, featureInterest);
-        sum += m->getWeight() * v;
-        weights += m->getWeight();
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
+        c.add(m->getWeight(), m->evaluate(p, view, featureInterest));
         any = true;
     }
-    if (!any) return 0.0;
-    switch (_combination)
-    {
-    case MINIMUM:
-        return lo;
-    case MAXIMUM:
-        return hi;
-    case WEIGHTED_MEAN:
-        break;
-    }
-    return weights > 0.0 ? sum / weights : 0.0;
+    return any ? c.result(_combination) : 0.0;
 }
 
 void TransitionConfiguration::interestRange(const osg::BoundingBoxd& box, const SaliencyView& view,
@@ -132,42 +143,58 @@ void TransitionConfiguration::interestRange(const osg::BoundingBoxd& box, const 
 {
     // Every metric's interest is non-increasing in its quantity, and every combination is
     // non-decreasing in each metric's interest, so the bounds combine bound by bound.
-    double sumLo = 0.0, sumHi = 0.0, weights = 0.0;
-    double minLo = 1.0, minHi = 1.0, maxLo = 0.0, maxHi = 0.0;
+    Combiner cLo, cHi;
     bool any = false;
     for (const auto& m : _metrics)
     {
         if (!m.valid()) continue;
-        double qMin = 0.0, qMax = 0.0;
-        m->measureRange(box, view, featureInterest, qMin, qMax);
-        const double iLo = m->interest(qMax), iHi = m->interest(qMin);
-        sumLo += m->getWeight() * iLo;
-        sumHi += m->getWeight() * iHi;
-        weights += m->getWeight();
-        minLo = std::min(minLo, iLo);
-        minHi = std::min(minHi, iHi);
-        maxLo = std::max(maxLo, iLo);
-        maxHi = std::max(maxHi, iHi);
+        double iLo = 0.0, iHi = 0.0;
+        m->interestRange(box, view, featureInterest, iLo, iHi);
+        cLo.add(m->getWeight(), iLo);
+        cHi.add(m->getWeight(), iHi);
         any = true;
     }
-    if (!any)
+    lo = any ? cLo.result(_combination) : 0.0;
+    hi = any ? cHi.result(_combination) : 0.0;
+}
+
+void TransitionConfiguration::interestOverBox(const osg::BoundingBoxd& box, const SaliencyView& view,
+                                              double featureInterest, double& atCentre, double& lo,
+                                              double& hi) const
+{
+    Combiner cAt, cLo, cHi;
+    bool any = false;
+    for (const auto& m : _metrics)
     {
-        lo = hi = 0.0;
-        return;
+        if (!m.valid()) continue;
+        double v = 0.0, iLo = 0.0, iHi = 0.0;
+        m->evaluateOverBox(box, view, featureInterest, v, iLo, iHi);
+        cAt.add(m->getWeight(), v);
+        cLo.add(m->getWeight(), iLo);
+        cHi.add(m->getWeight(), iHi);
+        any = true;
     }
-    switch (_combination)
+    atCentre = any ? cAt.result(_combination) : 0.0;
+    lo = any ? cLo.result(_combination) : 0.0;
+    hi = any ? cHi.result(_combination) : 0.0;
+}
+
+bool TransitionConfiguration::hasSameInterestAs(const TransitionConfiguration& other) const
+{
+    if (_combination != other._combination) return false;
+    auto a = _metrics.begin(), b = other._metrics.begin();
+    for (;;)
     {
-    case MINIMUM:
-        lo = minLo, hi = minHi;
-        return;
-    case MAXIMUM:
-        lo = maxLo, hi = maxHi;
-        return;
-    case WEIGHTED_MEAN:
-        break;
+        while (a != _metrics.end() && !a->valid())
+            ++a;
+        while (b != other._metrics.end() && !b->valid())
+            ++b;
+        if (a == _metrics.end() || b == other._metrics.end())
+            return a == _metrics.end() && b == other._metrics.end();
+        if (!(*a)->sameValuesAs(**b)) return false;
+        ++a;
+        ++b;
     }
-    lo = weights > 0.0 ? sumLo / weights : 0.0;
-    hi = weights > 0.0 ? sumHi / weights : 0.0;
 }
 
 std::vector<std::string> TransitionConfiguration::validate() const
@@ -208,7 +235,8 @@ std::vector<std::string> TransitionConfiguration::validate() const
         }
         if (int(m->getKind()) < 0 || int(m->getKind()) >= SaliencyMetric::kNumKinds)
         {
-            problems.push_back(label + "a saliency metric of unknown kind " + std::to_string(int(m->getKind())));
+            problems.push_back(label + "a saliency metric of unknown kind " +
+                               std::to_string(int(m->getKind())));
             continue;
         }
         if (seen[m->getKind()])

@@ -11,8 +11,8 @@
 namespace osgLoA
 {
 template <class C>
-void addFeatureTypeSerializer(osgDB::ObjectWrapper* wrapper, const char* name, FeatureType (C::*getter)() const,
-                              void (C::*setter)(FeatureType))
+void addFeatureTypeSerializer(osgDB::ObjectWrapper* wrapper, const char* name,
+                              FeatureType (C::*getter)() const, void (C::*setter)(FeatureType))
 {
     typedef osgDB::EnumSerializer<C, FeatureType, void> Serializer;
     osg::ref_ptr<Serializer> serializer = new Serializer(name, FeatureType::Generic, getter, setter);

@@ -1,7 +1,11 @@
 // Serializer wrapper for osgLoA::RegionOfInterest (.osgt/.osgb/.osgx). The radius is a user
 // serializer so that a negative or non-finite value fails the read with a message instead of
-// throwing out of osgDB.
+// throwing out of osgDB; the shape reads by name only (EnumByNameSerializer) and the vertex
+// count is bounded (BoundedListSerializer.h).
 #include <osgLoA/interest/RegionOfInterest>
+
+#include "BoundedListSerializer.h"
+#include "EnumByNameSerializer.h"
 
 #include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
@@ -40,11 +44,12 @@ bool writeRadius(osgDB::OutputStream& os, const osgLoA::RegionOfInterest& r)
 REGISTER_OBJECT_WRAPPER(osgLoA_RegionOfInterest, new osgLoA::RegionOfInterest, osgLoA::RegionOfInterest,
                         "osg::Object osgLoA::RegionOfInterest")
 {
-    BEGIN_ENUM_SERIALIZER(Shape, CIRCLES);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Shape, CIRCLES);
     ADD_ENUM_VALUE(CIRCLES);
     ADD_ENUM_VALUE(POLYLINE);
     ADD_ENUM_VALUE(POLYGON);
     END_ENUM_SERIALIZER();
-    ADD_VECTOR_SERIALIZER(Vertices, osgLoA::RegionOfInterest::Vertices, osgDB::BaseSerializer::RW_VEC2D, 1);
+    ADD_BOUNDED_VECTOR_SERIALIZER(Vertices, osgLoA::RegionOfInterest::Vertices,
+                                  osgDB::BaseSerializer::RW_VEC2D, 1);
     ADD_USER_SERIALIZER(Radius);
 }

@@ -1,5 +1,8 @@
-// Serializer wrapper for osgLoA::SaliencyMetric (.osgt/.osgb/.osgx).
+// Serializer wrapper for osgLoA::SaliencyMetric (.osgt/.osgb/.osgx). The kind reads by name only
+// (EnumByNameSerializer): an unknown name or number fails the read.
 #include <osgLoA/interest/SaliencyMetric>
+
+#include "EnumByNameSerializer.h"
 
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
@@ -7,7 +10,7 @@
 REGISTER_OBJECT_WRAPPER(osgLoA_SaliencyMetric, new osgLoA::SaliencyMetric, osgLoA::SaliencyMetric,
                         "osg::Object osgLoA::SaliencyMetric")
 {
-    BEGIN_ENUM_SERIALIZER(Kind, VIEW_DISTANCE);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Kind, VIEW_DISTANCE);
     ADD_ENUM_VALUE(VIEW_DISTANCE);
     ADD_ENUM_VALUE(VIEW_ANGLE);
     ADD_ENUM_VALUE(REGION);

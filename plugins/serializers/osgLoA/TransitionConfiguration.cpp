@@ -1,7 +1,11 @@
 // Serializer wrapper for osgLoA::TransitionConfiguration (.osgt/.osgb/.osgx). Feature types
 // are written by name (FeatureType's toString) and sub-types as quoted strings, so the files
-// neither depend on enum values nor break on spaces.
+// neither depend on enum values nor break on spaces. The enums read by name only
+// (EnumByNameSerializer) and the metrics list is bounded and type-checked (BoundedListSerializer.h).
 #include <osgLoA/transitions/TransitionConfiguration>
+
+#include "BoundedListSerializer.h"
+#include "EnumByNameSerializer.h"
 
 #include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
@@ -103,19 +107,19 @@ REGISTER_OBJECT_WRAPPER(osgLoA_TransitionConfiguration, new osgLoA::TransitionCo
     ADD_VEC2F_SERIALIZER(LodRange, osg::Vec2f(0.0f, 4.0f));
     ADD_VEC2F_SERIALIZER(InterestRange, osg::Vec2f(0.0f, 1.0f));
     ADD_STRING_SERIALIZER(Style, "");
-    BEGIN_ENUM_SERIALIZER(Interpolation, OBJECT);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Interpolation, OBJECT);
     ADD_ENUM_VALUE(FRAGMENT);
     ADD_ENUM_VALUE(OBJECT);
     ADD_ENUM_VALUE(GROUP);
     END_ENUM_SERIALIZER();
     ADD_BOOL_SERIALIZER(HasGroupFocus, false);
     ADD_VEC3D_SERIALIZER(GroupFocus, osg::Vec3d());
-    BEGIN_ENUM_SERIALIZER(Combination, WEIGHTED_MEAN);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Combination, WEIGHTED_MEAN);
     ADD_ENUM_VALUE(WEIGHTED_MEAN);
     ADD_ENUM_VALUE(MINIMUM);
     ADD_ENUM_VALUE(MAXIMUM);
     END_ENUM_SERIALIZER();
-    ADD_LIST_SERIALIZER(Metrics, osgLoA::TransitionConfiguration::Metrics);
+    ADD_BOUNDED_LIST_SERIALIZER(Metrics, osgLoA::TransitionConfiguration::Metrics, osgLoA::SaliencyMetric);
     ADD_VEC2F_SERIALIZER(FadeIn, osg::Vec2f(0.0f, 0.0f));
     ADD_VEC2F_SERIALIZER(FadeOut, osg::Vec2f(1.0f, 1.0f));
 }

@@ -1,5 +1,8 @@
-// Serializer wrapper for osgLoA::UsageScenario (.osgt/.osgb/.osgx): a scenario library entry.
+// Serializer wrapper for osgLoA::UsageScenario (.osgt/.osgb/.osgx): a scenario library entry. The
+// lists are bounded and type-checked, the interest type-checked (BoundedListSerializer.h).
 #include <osgLoA/transitions/UsageScenario>
+
+#include "BoundedListSerializer.h"
 
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
@@ -8,8 +11,9 @@ REGISTER_OBJECT_WRAPPER(osgLoA_UsageScenario, new osgLoA::UsageScenario, osgLoA:
                         "osg::Object osgLoA::UsageScenario")
 {
     ADD_STRING_SERIALIZER(Description, "");
-    ADD_OBJECT_SERIALIZER(Interest, osgLoA::FeatureInterest, NULL);
-    ADD_LIST_SERIALIZER(Configurations, osgLoA::UsageScenario::Configurations);
-    ADD_LIST_SERIALIZER(Regions, osgLoA::UsageScenario::Regions);
+    ADD_CHECKED_OBJECT_SERIALIZER(Interest, osgLoA::FeatureInterest, NULL);
+    ADD_BOUNDED_LIST_SERIALIZER(Configurations, osgLoA::UsageScenario::Configurations,
+                                osgLoA::TransitionConfiguration);
+    ADD_BOUNDED_LIST_SERIALIZER(Regions, osgLoA::UsageScenario::Regions, osgLoA::RegionOfInterest);
     ADD_UINT_SERIALIZER(FocusFeature, 0u);
 }
