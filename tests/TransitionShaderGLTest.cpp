@@ -171,3 +171,140 @@ TEST(TransitionShaderGLTest, FragmentInterestMatchesTheCpuPerPixel)
         EXPECT_LT(m.interest, 1.0f);
     }
 }
+
+namespace
+{
+osg::ref_ptr<OffscreenRenderer> makeRenderer(int w, int h)
+{
+    OffscreenRenderer::Settings settings;
+    settings.width = w;
+    settings.height = h;
+    return new OffscreenRenderer(settings);
+}
+
+// The ground point seen through pixel (x, y), or false when the ray misses the ground quad.
+bool groundPoint(const osg::Matrixd& inverseViewProjection, int x, int y, int w, int h, osg::Vec3d& p)
+{
+    const double nx = (x + 0.5) / w * 2 - 1, ny = (y + 0.5) / h * 2 - 1;
+    const osg::Vec3d a = osg::Vec3d(nx, ny, -1) * inverseViewProjection,
+                     b = osg::Vec3d(nx, ny, 1) * inverseViewProjection;
+    const osg::Vec3d dir = b - a;
+    if (dir.z() >= 0) return false;
+    p = a + dir * (-a.z() / dir.z());
+    return std::fabs(p.x()) < 195 && std::fabs(p.y()) < 195;
+}
+} // namespace
+
+// The region metric per fragment reads the LoA node's jump-flooding distance map; per pixel it
+// must agree with the CPU's exact distance to the regions within the map's documented error.
+TEST(TransitionShaderGLTest, FragmentRegionInterestFollowsTheDistanceMap)
+{
+    typedef SaliencyMetric M;
+    osg::ref_ptr<LoANode> node = new LoANode;
+    node->addChild(feature(ground().get(), 1, FeatureType::Terrain).get());
+    osg::ref_ptr<UsageScenario> sc = new UsageScenario;
+    sc->setName("regions");
+    sc->addRegion(new RegionOfInterest(RegionOfInterest::CIRCLES, {{-60.0, 40.0}}, 25.0));
+    sc->addRegion(new RegionOfInterest(RegionOfInterest::POLYLINE,
+                                       {{-150.0, -120.0}, {20.0, -60.0}, {150.0, 120.0}}, 4.0));
+    osg::ref_ptr<TransitionConfiguration> t = new TransitionConfiguration;
+    t->setName("terrain");
+    t->setStyle("photorealistic");
+    t->addFeatureType(FeatureType::Terrain);
+    t->setInterpolation(TransitionConfiguration::FRAGMENT);
+    t->addMetric(new M(M::REGION, 0.0, 64.0));
+    sc->addConfiguration(t.get());
+    node->setScenario(sc.get());
+    const osg::Vec3d eye(0, -260, 230), center(0, 0, 0), up(0, 0, 1);
+    node->bind();
+    ASSERT_NE(node->getDistanceField(), nullptr) << "a fragment-mode region metric needs the map";
+    const DistanceField::Grid grid = node->getDistanceField()->getGrid();
+    // Texels of a 64th of the ramp (1 m), over the ground's 400 m: 400 x 400, no larger.
+    EXPECT_DOUBLE_EQ(grid.texelSize, 1.0);
+    EXPECT_EQ(grid.width, 400);
+    EXPECT_EQ(grid.height, 400);
+    node->evaluate(eye);
+    osg::ref_ptr<osg::Group> view = InterestDebugView::create(*node);
+
+    osg::ref_ptr<OffscreenRenderer> r;
+    try
+    {
+        r = makeRenderer(200, 150);
+    }
+    catch (const HeadlessContextError& e)
+    {
+        GTEST_SKIP() << "no EGL context: " << e.what();
+    }
+    r->setSceneData(view.get());
+    r->setPerspective(50.0);
+    r->setViewMatrixAsLookAt(eye, center, up);
+    osg::ref_ptr<osg::Image> image = r->renderImage();
+    EXPECT_EQ(node->getDistanceField()->getNumComputations(), 1u);
+
+    const osg::Matrixd inv =
+        osg::Matrixd::inverse(r->getCamera()->getViewMatrix() * r->getCamera()->getProjectionMatrix());
+    const ScenarioEvaluator& e = *node->getEvaluator();
+    // Bar: the map's distance is the seed rasterization's (-0.71 .. +1.41 texels,
+    // docs/distance-field.md) plus bilinear filtering between texel centres (up to half a texel
+    // diagonal, 0.71) away from the exact distance: 2.12 m over a 64 m ramp is 0.033 of
+    // interest, 8.5/255; plus 1/255 of quantization. Mean well below: most pixels are
+    // saturated (0 or 1) or on smooth slopes.
+    int compared = 0, worst = 0, ramped = 0;
+    double sum = 0.0;
+    for (int y = 0; y < 150; ++y)
+        for (int x = 0; x < 200; ++x)
+        {
+            osg::Vec3d p;
+            if (!groundPoint(inv, x, y, 200, 150, p)) continue;
+            const double cpu = t->interestAt(p, e.getView(), 0.0);
+            const int diff = std::abs(int(image->data(x, y)[0]) - int(std::lround((1.0 - cpu) * 255.0)));
+            worst = std::max(worst, diff);
+            sum += diff;
+            ++compared;
+            ramped += cpu > 0.05 && cpu < 0.95 ? 1 : 0;
+        }
+    ASSERT_GT(compared, 200 * 150 / 3);
+    EXPECT_GT(ramped, compared / 10) << "the view should show the ramps around the regions";
+    EXPECT_LE(worst, 10);
+    EXPECT_LT(sum / compared, 1.5);
+}
+
+// In a viewer, the node evaluates in every cull, from the camera's eye, and only features in
+// the view frustum count as visible.
+TEST(TransitionShaderGLTest, CullEvaluatesVisibleFeaturesFromTheEye)
+{
+    osg::ref_ptr<LoANode> node = new LoANode;
+    node->addChild(feature(new osg::ShapeDrawable(new osg::Box(osg::Vec3(0, 100, 10), 20, 20, 20)), 2,
+                           FeatureType::Building)
+                       .get());
+    node->addChild(feature(new osg::ShapeDrawable(new osg::Box(osg::Vec3(0, -400, 10), 20, 20, 20)), 3,
+                           FeatureType::Building)
+                       .get());
+    node->setScenario(scenario().get());
+    osg::ref_ptr<OffscreenRenderer> r;
+    try
+    {
+        r = makeRenderer(64, 48);
+    }
+    catch (const HeadlessContextError& e)
+    {
+        GTEST_SKIP() << "no EGL context: " << e.what();
+    }
+    r->setSceneData(node.get());
+    r->setPerspective(40.0);
+    const osg::Vec3d eye(0, -100, 30);
+    r->setViewMatrixAsLookAt(eye, osg::Vec3d(0, 100, 10), osg::Vec3d(0, 0, 1));
+    r->timeFrames(3); // a warm-up frame and 3 timed ones
+    EXPECT_EQ(node->getEvaluationCount(), 4u);
+    const ScenarioEvaluator& e = *node->getEvaluator();
+    EXPECT_NEAR((e.getView().eye - eye).length(), 0.0, 1e-6);
+    const int front = e.findFeature(2), behind = e.findFeature(3);
+    ASSERT_GE(front, 0);
+    ASSERT_GE(behind, 0);
+    EXPECT_TRUE(e.features()[front].visible);
+    EXPECT_FALSE(e.features()[behind].visible) << "the box 300 m behind the camera is culled";
+    // Object mode at the box centre: distance sqrt(0 + 200^2 + 20^2) = 200.998 m on the ramp
+    // 40..260 gives 1 - 160.998/220 = 0.26819.
+    EXPECT_NEAR(e.matchesOf(e.features()[front])[0].interest,
+                1.0 - (std::sqrt(200.0 * 200.0 + 20.0 * 20.0) - 40.0) / 220.0, 1e-5);
+}
