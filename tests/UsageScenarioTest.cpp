@@ -222,3 +222,22 @@ TEST(UsageScenarioTest, DeepCopyCopiesEverything)
     EXPECT_FLOAT_EQ(s->getInterest()->getTypeInterest(FeatureType::Green), 0.3f);
     EXPECT_TRUE(d->validate().ok());
 }
+
+// OSG's convention: a shallow copy shares the configurations, regions and overrides; only a
+// deep copy clones them.
+TEST(UsageScenarioTest, ShallowCopySharesChildren)
+{
+    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::createBuiltin("route");
+    s->setInterest(new FeatureInterest);
+    osg::ref_ptr<UsageScenario> shallow = new UsageScenario(*s, osg::CopyOp::SHALLOW_COPY);
+    EXPECT_EQ(shallow->getConfigurations()[0].get(), s->getConfigurations()[0].get());
+    EXPECT_EQ(shallow->getRegions()[0].get(), s->getRegions()[0].get());
+    EXPECT_EQ(shallow->getInterest(), s->getInterest());
+    osg::ref_ptr<TransitionConfiguration> c =
+        new TransitionConfiguration(*s->getConfigurations()[0], osg::CopyOp::SHALLOW_COPY);
+    EXPECT_EQ(c->getMetrics()[0].get(), s->getConfigurations()[0]->getMetrics()[0].get());
+    osg::ref_ptr<UsageScenario> deep = new UsageScenario(*s, osg::CopyOp::DEEP_COPY_ALL);
+    EXPECT_NE(deep->getConfigurations()[0].get(), s->getConfigurations()[0].get());
+    EXPECT_NE(deep->getConfigurations()[0]->getMetrics()[0].get(),
+              s->getConfigurations()[0]->getMetrics()[0].get());
+}

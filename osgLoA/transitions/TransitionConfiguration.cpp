@@ -62,7 +62,7 @@ TransitionConfiguration::TransitionConfiguration(const TransitionConfiguration& 
       _fadeOut(other._fadeOut)
 {
     for (const auto& m : other._metrics)
-        _metrics.push_back(m.valid() ? osg::clone(m.get(), copyop) : nullptr);
+        _metrics.push_back(m.valid() ? static_cast<SaliencyMetric*>(copyop(m.get())) : nullptr);
 }
 
 void TransitionConfiguration::setFeatureTypes(const FeatureTypes& types)

@@ -33,13 +33,15 @@ UsageScenario::UsageScenario() = default;
 
 UsageScenario::UsageScenario(const UsageScenario& other, const osg::CopyOp& copyop)
     : osg::Object(other, copyop), _description(other._description),
-      _interest(other._interest.valid() ? osg::clone(other._interest.get(), copyop) : nullptr),
+      _interest(other._interest.valid() ? static_cast<FeatureInterest*>(copyop(other._interest.get()))
+                                        : nullptr),
       _focusFeature(other._focusFeature)
 {
     for (const auto& c : other._configurations)
-        _configurations.push_back(c.valid() ? osg::clone(c.get(), copyop) : nullptr);
+        _configurations.push_back(c.valid() ? static_cast<TransitionConfiguration*>(copyop(c.get()))
+                                            : nullptr);
     for (const auto& r : other._regions)
-        _regions.push_back(r.valid() ? osg::clone(r.get(), copyop) : nullptr);
+        _regions.push_back(r.valid() ? static_cast<RegionOfInterest*>(copyop(r.get())) : nullptr);
 }
 
 TransitionConfiguration* UsageScenario::addConfiguration(TransitionConfiguration* c)
