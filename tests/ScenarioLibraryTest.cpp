@@ -80,3 +80,40 @@ TEST(ScenarioLibraryTest, TruncatedFilesFailFastWithTheReason)
     for (std::size_t n = 0; n < lastBrace; n += 7)
         EXPECT_THROW(ScenarioLibrary::readData(full.substr(0, n), "prefix"), ScenarioError) << n;
 }
+
+// Text that is structurally complete but makes OSG's reader loop once a value fails to parse
+// (the stream stays failed): the parse runs in a child process and gives up after 5 s.
+TEST(ScenarioLibraryTest, AReaderThatLoopsIsStoppedWithAMessage)
+{
+    const std::string path =
+        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/hang-fuzzer-found-failed-stream.osgt";
+    ASSERT_EQ(ScenarioLibrary::checkAsciiStructure(textOf(path)), "")
+        << "the guard's first check must pass it";
+    const auto t0 = std::chrono::steady_clock::now();
+    try
+    {
+        ScenarioLibrary::readFile(path);
+        ADD_FAILURE() << "read";
+    }
+    catch (const ScenarioError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("did not finish within 5 s"), std::string::npos) << e.what();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_GT(seconds, 4.5);
+    EXPECT_LT(seconds, 8.0);
+    // A file the reader rejects quickly reports the reader's own message through the child.
+    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest");
+    std::string text = textOf(std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt");
+    text.replace(text.find("Kind REGION"), 11, "Kind LOUDNESS");
+    std::ofstream(dir + "/bad-kind.osgt") << text;
+    try
+    {
+        ScenarioLibrary::readFile(dir + "/bad-kind.osgt");
+        ADD_FAILURE() << "read";
+    }
+    catch (const ScenarioError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("LOUDNESS"), std::string::npos) << e.what();
+    }
+}

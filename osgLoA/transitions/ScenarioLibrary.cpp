@@ -12,9 +12,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <fstream>
 #include <set>
+
+#include <fcntl.h>
+#include <poll.h>
 #include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #ifndef OSGLOA_SCENARIO_SOURCE_DIR
 #define OSGLOA_SCENARIO_SOURCE_DIR ""
@@ -296,6 +304,15 @@ std::string ScenarioLibrary::checkAsciiStructure(const std::string& text)
     for (std::size_t i = 0; i < text.size(); ++i)
     {
         const char c = text[i];
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 && c != '\t' && c != '\n' && c != '\r')
+        {
+            // OSG's reader can loop on them too, and no writer puts them in a text file.
+            std::ostringstream s;
+            s << "the text contains the control character 0x" << std::hex << int(u) << " at byte " << std::dec
+              << i;
+            return s.str();
+        }
         if (inString)
         {
             if (c == '\\')
@@ -319,21 +336,11 @@ std::string ScenarioLibrary::checkAsciiStructure(const std::string& text)
     return std::string();
 }
 
-osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, const std::string& label)
+namespace
 {
-    // osgdb_osg reads text whose first word is "#Ascii" with its ASCII reader (binary files
-    // start with a magic number, XML ones with "<?xml"); only that reader needs the check.
-    std::string firstWord;
-    std::istringstream(data.substr(0, 64)) >> firstWord;
-    if (firstWord == "#Ascii")
-    {
-        const std::string problem = checkAsciiStructure(data);
-        if (!problem.empty()) throw ScenarioError("malformed scenario file '" + label + "': " + problem);
-    }
-    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
-    if (!rw) throw ScenarioError("no osgDB reader for scenario files (is the osg2 plugin installed?)");
-    std::istringstream in(data);
-    osgDB::ReaderWriter::ReadResult rr = rw->readObject(in);
+// The scenario an object read from a scenario file holds: itself, or a LoANode's.
+osg::ref_ptr<UsageScenario> scenarioOf(osgDB::ReaderWriter::ReadResult& rr, const std::string& label)
+{
     if (!rr.success() || !rr.getObject())
         throw ScenarioError("cannot read scenario file '" + label + "'" +
                             (rr.message().empty() ? std::string() : ": " + rr.message()));
@@ -347,6 +354,128 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, c
         throw ScenarioError("'" + label + "' holds a " + rr.getObject()->className() +
                             ", not an osgLoA::UsageScenario");
     return s;
+}
+
+// OSG 3.6.5's text readers (ASCII and XML) can loop forever on malformed input (at the end of
+// the stream, or once a number fails to parse and the stream stays failed). So a text file is
+// parsed in a child process with a deadline; the child sends the scenario back in OSG's binary
+// format (which our own writer produced, so it reads safely) or the reader's message.
+osg::ref_ptr<UsageScenario> readTextInChild(osgDB::ReaderWriter& rw, const std::string& data,
+                                            const std::string& label)
+{
+    int fds[2];
+    if (pipe(fds) != 0) throw ScenarioError("cannot read scenario file '" + label + "': pipe() failed");
+    const pid_t pid = fork();
+    if (pid < 0)
+    {
+        close(fds[0]);
+        close(fds[1]);
+        throw ScenarioError("cannot read scenario file '" + label + "': fork() failed");
+    }
+    if (pid == 0)
+    {
+        close(fds[0]);
+        // The reader's complaints come back in the reply; a looping reader prints endlessly.
+        const int devNull = open("/dev/null", O_WRONLY);
+        if (devNull >= 0)
+        {
+            dup2(devNull, 1);
+            dup2(devNull, 2);
+        }
+        std::string reply;
+        try
+        {
+            std::istringstream in(data);
+            osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
+            osg::ref_ptr<UsageScenario> s = scenarioOf(rr, label);
+            std::ostringstream out;
+            osg::ref_ptr<osgDB::Options> binary = new osgDB::Options;
+            binary->setPluginStringData("fileType", "Binary");
+            rw.writeObject(*s, out, binary.get());
+            reply = "S" + out.str();
+        }
+        catch (const std::exception& e)
+        {
+            reply = std::string("E") + e.what();
+        }
+        std::size_t done = 0;
+        while (done < reply.size())
+        {
+            const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
+            if (n <= 0) break;
+            done += std::size_t(n);
+        }
+        close(fds[1]);
+        _exit(0);
+    }
+    close(fds[1]);
+    std::string reply;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    bool timedOut = false;
+    char buffer[65536];
+    for (;;)
+    {
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now())
+                .count();
+        if (left <= 0)
+        {
+            timedOut = true;
+            break;
+        }
+        pollfd p{fds[0], POLLIN, 0};
+        const int r = poll(&p, 1, int(left));
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0)
+        {
+            timedOut = r == 0;
+            break;
+        }
+        const ssize_t n = read(fds[0], buffer, sizeof(buffer));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        reply.append(buffer, std::size_t(n));
+    }
+    close(fds[0]);
+    if (timedOut) kill(pid, SIGKILL);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    {
+    }
+    if (timedOut)
+        throw ScenarioError("malformed scenario file '" + label +
+                            "': OpenSceneGraph's text reader did not finish within 5 s");
+    if (reply.empty())
+        throw ScenarioError("malformed scenario file '" + label +
+                            "': OpenSceneGraph's text reader crashed on it");
+    if (reply[0] == 'E') throw ScenarioError(reply.substr(1));
+    std::istringstream in(reply.substr(1));
+    osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
+    return scenarioOf(rr, label);
+}
+} // namespace
+
+osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, const std::string& label)
+{
+    // osgdb_osg reads text whose first word is "#Ascii" with its ASCII reader, text whose first
+    // line starts with "<?xml" with its XML reader, and files with its magic number as binary.
+    std::string firstWord;
+    std::istringstream(data.substr(0, 64)) >> firstWord;
+    const bool ascii = firstWord == "#Ascii";
+    const bool xml = firstWord.compare(0, 5, "<?xml") == 0;
+    if (ascii)
+    {
+        const std::string problem = checkAsciiStructure(data);
+        if (!problem.empty()) throw ScenarioError("malformed scenario file '" + label + "': " + problem);
+    }
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    if (!rw) throw ScenarioError("no osgDB reader for scenario files (is the osg2 plugin installed?)");
+    // The serializer plugin must be loaded before the fork, so that the child has it.
+    osgDB::Registry::instance()->getObjectWrapperManager()->findWrapper("osgLoA::UsageScenario");
+    if (ascii || xml) return readTextInChild(*rw, data, label);
+    std::istringstream in(data);
+    osgDB::ReaderWriter::ReadResult rr = rw->readObject(in);
+    return scenarioOf(rr, label);
 }
 
 void ScenarioLibrary::writeFile(const UsageScenario& scenario, const std::string& path)
