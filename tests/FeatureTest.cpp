@@ -12,12 +12,14 @@
 #include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osgDB/ReadFile>
+#include <osgDB/Registry>
 #include <osgDB/WriteFile>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 using namespace osgLoA;
 
@@ -168,5 +170,34 @@ TEST(FeatureTest, DemoCityFeaturesSurviveOsgtAndOsgbRoundTrips)
         const FeatureIndex::Counts after = FeatureIndex(*back).counts();
         EXPECT_EQ(after.toJson(), before.toJson());
         EXPECT_GT(after.total, 20u);
+    }
+}
+
+// An unknown type or source name in a file fails the read with a message naming it, instead of
+// silently becoming the first enumerator (OSG's own enum serializer reads unknown names as 0).
+TEST(FeatureTest, UnknownEnumNamesFailTheRead)
+{
+    osg::ref_ptr<Feature> f = new Feature(7, FeatureType::Water, "river", Feature::RULE);
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    ASSERT_NE(rw, nullptr);
+    osg::ref_ptr<osgDB::Options> ascii = new osgDB::Options;
+    ascii->setPluginStringData("fileType", "Ascii");
+    std::ostringstream out;
+    ASSERT_TRUE(rw->writeObject(*f, out, ascii.get()).success());
+    const std::string text = out.str();
+    ASSERT_NE(text.find("Type water"), std::string::npos) << text;
+    ASSERT_NE(text.find("Source RULE"), std::string::npos) << text;
+    for (const std::pair<std::string, std::string>& edit :
+         {std::make_pair(std::string("Type water"), std::string("Type lava")),
+          std::make_pair(std::string("Source RULE"), std::string("Source GUESS")),
+          std::make_pair(std::string("Type water"), std::string("Type 99"))})
+    {
+        std::string bad = text;
+        bad.replace(bad.find(edit.first), edit.first.size(), edit.second);
+        std::istringstream in(bad);
+        osgDB::ReaderWriter::ReadResult rr = rw->readObject(in, ascii.get());
+        EXPECT_FALSE(rr.success() && rr.getObject()) << edit.second;
+        EXPECT_NE(rr.message().find(edit.second.substr(edit.second.find(' ') + 1)), std::string::npos)
+            << edit.second << ": " << rr.message();
     }
 }

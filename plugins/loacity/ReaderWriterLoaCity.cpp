@@ -22,7 +22,15 @@ public:
     {
         supportsExtension("loacity", "osgLoA demo city (procedural; parameters as key=value)");
         supportsOption("seed=N", "random seed");
-        supportsOption("blocksX=N / blocksY=N", "city size in blocks; see docs/demo-city.md for every key");
+        supportsOption("blocksX=N / blocksY=N", "city size in blocks");
+        supportsOption("blockSize=M", "side of a block in metres");
+        supportsOption("minorRoadWidth=M / majorRoadWidth=M / majorRoadEvery=N", "roads");
+        supportsOption("terrainResolution=N / terrainMargin=M / reliefAmplitude=M", "terrain");
+        supportsOption("river=true|false / riverWidth=M", "the river");
+        supportsOption("parkFraction=F / forestFraction=F", "shares of free blocks for parks and forests");
+        supportsOption("parkTreesPerHectare=N / forestTreesPerHectare=N", "tree densities");
+        supportsOption("landmarks=N / minFloors=N / maxFloors=N", "landmarks and building heights "
+                                                                  "(docs/demo-city.md)");
     }
     const char* className() const override { return "osgLoA demo city pseudo-loader"; }
 

@@ -3,6 +3,8 @@
 
 #include "FeatureTypeSerializer.h"
 
+#include "EnumByNameSerializer.h"
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -10,7 +12,7 @@
 REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRule, new osgLoA::ClassificationRule, osgLoA::ClassificationRule,
                         "osg::Object osgLoA::ClassificationRule")
 {
-    BEGIN_ENUM_SERIALIZER(Field, ANY);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Field, ANY);
         ADD_ENUM_VALUE(NODE_NAME);
         ADD_ENUM_VALUE(NODE_DESCRIPTION);
         ADD_ENUM_VALUE(USER_VALUE);
@@ -20,7 +22,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRule, new osgLoA::ClassificationRul
         ADD_ENUM_VALUE(ANY);
     END_ENUM_SERIALIZER();
     ADD_STRING_SERIALIZER(UserValueKey, "");
-    BEGIN_ENUM_SERIALIZER(Syntax, GLOB);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Syntax, GLOB);
         ADD_ENUM_VALUE(GLOB);
         ADD_ENUM_VALUE(REGEX);
     END_ENUM_SERIALIZER();

@@ -3,6 +3,8 @@
 
 #include "FeatureTypeSerializer.h"
 
+#include "EnumByNameSerializer.h"
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -12,7 +14,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_Feature, new osgLoA::Feature, osgLoA::Feature, "o
     ADD_UINT_SERIALIZER(Id, 0u);
     osgLoA::addFeatureTypeSerializer<MyClass>(wrapper, "Type", &MyClass::getType, &MyClass::setType);
     ADD_STRING_SERIALIZER(SubType, "");
-    BEGIN_ENUM_SERIALIZER(Source, UNCLASSIFIED);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Source, UNCLASSIFIED);
         ADD_ENUM_VALUE(UNCLASSIFIED);
         ADD_ENUM_VALUE(MODEL_DATA);
         ADD_ENUM_VALUE(RULE);

@@ -5,6 +5,8 @@
 
 #include <osgLoA/semantics/FeatureType>
 
+#include "EnumByNameSerializer.h"
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -14,8 +16,10 @@ template <class C>
 void addFeatureTypeSerializer(osgDB::ObjectWrapper* wrapper, const char* name,
                               FeatureType (C::*getter)() const, void (C::*setter)(FeatureType))
 {
-    typedef osgDB::EnumSerializer<C, FeatureType, void> Serializer;
-    osg::ref_ptr<Serializer> serializer = new Serializer(name, FeatureType::Generic, getter, setter);
+    // Unknown names and out-of-range numbers fail the read with a message.
+    typedef EnumByNameSerializer<C, FeatureType> Serializer;
+    osg::ref_ptr<Serializer> serializer =
+        new Serializer(wrapper->getName(), name, FeatureType::Generic, getter, setter);
     for (FeatureType t : kFeatureTypes)
         serializer->add(toString(t), t);
     wrapper->addSerializer(serializer.get(), osgDB::BaseSerializer::RW_ENUM);
