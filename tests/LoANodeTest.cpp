@@ -1,5 +1,7 @@
 // LoANode without GL: OSG calls apply(osg::Group&) for it (ARCHITECTURE §3: a visitor that
 // cares about osgLoA types casts there), and its bind/evaluate path for tools.
+#include "support/TestSupport.h"
+
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -21,15 +23,7 @@ namespace
 osg::ref_ptr<osg::Geode> box(unsigned id, FeatureType type, const osg::Vec3& minimum,
                              const osg::Vec3& maximum)
 {
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    for (int i = 0; i < 8; ++i)
-        v->push_back(osg::Vec3(i & 1 ? maximum.x() : minimum.x(), i & 2 ? maximum.y() : minimum.y(),
-                               i & 4 ? maximum.z() : minimum.z()));
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 8));
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
+    osg::ref_ptr<osg::Geode> geode = loatest::boxGeode(minimum, maximum);
     Feature::attach(*geode, new Feature(id, type));
     return geode;
 }

@@ -2,6 +2,8 @@
 // hand-computed interest and weights for object, group and fragment interpolation,
 // normalization, visibility, interest overrides, focus and region metrics, bind errors, and
 // that evaluate() allocates nothing (a counting global operator new below).
+#include "support/TestSupport.h"
+
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/semantics/FeatureInterest>
@@ -65,20 +67,7 @@ namespace
 typedef SaliencyMetric M;
 typedef TransitionConfiguration TC;
 
-/** A Geode whose one Geometry has the 8 corners of the box (its bound is exactly the box). */
-osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& maximum)
-{
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    for (int i = 0; i < 8; ++i)
-        v->push_back(osg::Vec3(i & 1 ? maximum.x() : minimum.x(), i & 2 ? maximum.y() : minimum.y(),
-                               i & 4 ? maximum.z() : minimum.z()));
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 8));
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
-    return geode;
-}
+using loatest::boxGeode;
 
 Feature* addBox(osg::Group& parent, unsigned id, FeatureType type, const osg::Vec3& minimum,
                 const osg::Vec3& maximum, const std::string& subType = "")

@@ -160,24 +160,32 @@ std::string CameraChoice::describe() const
 
 void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice)
 {
-    const auto& s = renderer.getSettings();
-    const double aspect = static_cast<double>(s.width) / s.height;
-    if (!choice.name.empty())
+    checkCameraOptions(choice);
+    if (choice.name.empty() && !choice.haveEye)
     {
-        const osgLoA::CameraPose pose =
-            osgLoA::CityCameras::compute(choice.name, *renderer.getSceneData(), aspect);
-        renderer.setPerspective(pose.fovy);
-        renderer.setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
-    }
-    else if (choice.haveEye)
-    {
-        if ((choice.center - choice.eye).length2() == 0.0) throw UsageError("--eye and --center must differ");
-        if (((choice.center - choice.eye) ^ choice.up).length2() == 0.0)
-            throw UsageError("--up must not be parallel to the view direction");
-        renderer.setViewMatrixAsLookAt(choice.eye, choice.center, choice.up);
-    }
-    else
         renderer.frameScene();
+        return;
+    }
+    const auto& s = renderer.getSettings();
+    const osgLoA::CameraPose pose =
+        cameraPose(choice, *renderer.getSceneData(), static_cast<double>(s.width) / s.height);
+    if (!choice.name.empty()) renderer.setPerspective(pose.fovy);
+    renderer.setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+}
+
+osgLoA::CameraPose cameraPose(const CameraChoice& choice, osg::Node& scene, double aspect)
+{
+    if (!choice.name.empty()) return osgLoA::CityCameras::compute(choice.name, scene, aspect);
+    osgLoA::CameraPose pose;
+    if (choice.haveEye)
+    {
+        pose.eye = choice.eye, pose.center = choice.center, pose.up = choice.up;
+        return pose;
+    }
+    const osg::BoundingSphere bs = scene.getBound();
+    if (!bs.valid()) throw std::runtime_error("the model is empty: no camera can frame it");
+    osgLoA::OffscreenRenderer::framingPose(bs, pose.fovy, aspect, pose.eye, pose.center, pose.up);
+    return pose;
 }
 
 const char* const kCameraHelp =
@@ -226,6 +234,9 @@ void checkCameraOptions(const CameraChoice& c)
     if (c.haveEye != c.haveCenter) throw UsageError("--eye and --center go together");
     if (c.haveUp && !c.haveEye) throw UsageError("--up needs --eye and --center");
     if (!c.name.empty() && c.haveEye) throw UsageError("--camera and --eye/--center exclude each other");
+    if (c.haveEye && (c.center - c.eye).length2() == 0.0) throw UsageError("--eye and --center must differ");
+    if (c.haveEye && ((c.center - c.eye) ^ c.up).length2() == 0.0)
+        throw UsageError("--up must not be parallel to the view direction");
 }
 
 } // namespace loa

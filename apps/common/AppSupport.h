@@ -2,6 +2,7 @@
 #ifndef OSGLOA_APPS_APPSUPPORT_H
 #define OSGLOA_APPS_APPSUPPORT_H 1
 
+#include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityParameters>
 #include <osgLoA/render/OffscreenRenderer>
 
@@ -71,10 +72,15 @@ struct CameraChoice
     std::string describe() const;
 };
 void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice);
+/** The pose applyCamera gives a renderer of this aspect ratio showing scene (for tools that
+ *  evaluate from the camera without rendering). Throws std::runtime_error for an empty scene
+ *  when no camera is named or given. */
+osgLoA::CameraPose cameraPose(const CameraChoice& choice, osg::Node& scene, double aspect);
 /** Consumes --camera NAME, --eye, --center, --up (option `a` already taken from args);
  *  false when `a` is none of them. */
 bool parseCameraOption(const std::string& a, Args& args, CameraChoice& choice);
-/** Throws UsageError for contradictory camera options. */
+/** Throws UsageError for contradictory camera options, an --eye equal to --center, and an --up
+ *  parallel to the view direction. */
 void checkCameraOptions(const CameraChoice& choice);
 /** --help/-h prints help, --version "<tool> <version>"; both exit 0. Returns for any other word. */
 void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help);

@@ -1024,37 +1024,7 @@ ExplainOptions parseExplain(loa::Args& args)
     if (o.scenario.empty()) throw loa::UsageError("explain: no SCENARIO given (see --help)");
     if (!o.image.empty() && osgDB::getLowerCaseFileExtension(o.image) != "png")
         throw loa::UsageError("--image '" + o.image + "' must name a .png file");
-    if (o.camera.haveEye)
-    {
-        if ((o.camera.center - o.camera.eye).length2() == 0.0)
-            throw loa::UsageError("--eye and --center must differ");
-        if (((o.camera.center - o.camera.eye) ^ o.camera.up).length2() == 0.0)
-            throw loa::UsageError("--up must not be parallel to the view direction");
-    }
     return o;
-}
-
-/** The camera pose the renderer would use for this choice (loa::applyCamera's rules). */
-osgLoA::CameraPose cameraPose(const loa::CameraChoice& choice, osg::Node& scene, double aspect)
-{
-    osgLoA::CameraPose pose;
-    if (!choice.name.empty()) return osgLoA::CityCameras::compute(choice.name, scene, aspect);
-    if (choice.haveEye)
-    {
-        pose.eye = choice.eye, pose.center = choice.center, pose.up = choice.up;
-        return pose;
-    }
-    // OffscreenRenderer::frameScene: the bounding sphere from the south-west, 45 degree fovy.
-    const osg::BoundingSphere bs = scene.getBound();
-    if (!bs.valid()) throw std::runtime_error("the model is empty: no camera can frame it");
-    const double fovyRad = osg::DegreesToRadians(pose.fovy);
-    const double halfFov = std::min(fovyRad, 2.0 * std::atan(std::tan(fovyRad / 2.0) * aspect)) / 2.0;
-    osg::Vec3d dir(-0.5, -0.7, 0.55);
-    dir.normalize();
-    pose.center = bs.center();
-    pose.eye = pose.center + dir * (bs.radius() / std::sin(halfFov));
-    pose.up = osg::Vec3d(0, 0, 1);
-    return pose;
 }
 
 int cmdExplain(loa::Args& args)
@@ -1096,7 +1066,7 @@ int cmdExplain(loa::Args& args)
         throw std::runtime_error(e.what()); // a scenario problem, not a usage error
     }
     const double aspect = double(o.width) / o.height;
-    const osgLoA::CameraPose pose = cameraPose(o.camera, *scene, aspect);
+    const osgLoA::CameraPose pose = loa::cameraPose(o.camera, *scene, aspect);
     const osg::Vec3d eye = pose.eye;
 
     osgLoA::ScenarioEvaluator& ev = *node->getEvaluator();

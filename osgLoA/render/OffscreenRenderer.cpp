@@ -154,20 +154,28 @@ void OffscreenRenderer::setViewMatrixAsLookAt(const osg::Vec3d& eye, const osg::
     _viewer->getCamera()->setViewMatrixAsLookAt(eye, center, up);
 }
 
+void OffscreenRenderer::framingPose(const osg::BoundingSphere& bs, double fovyDegrees, double aspect,
+                                    osg::Vec3d& eye, osg::Vec3d& center, osg::Vec3d& up)
+{
+    const double fovyRad = osg::DegreesToRadians(fovyDegrees);
+    const double halfFov = std::min(fovyRad, 2.0 * std::atan(std::tan(fovyRad / 2.0) * aspect)) / 2.0;
+    const double distance = bs.radius() / std::sin(halfFov);
+    osg::Vec3d dir(-0.5, -0.7, 0.55);
+    dir.normalize();
+    center = bs.center();
+    eye = center + dir * distance;
+    up.set(0, 0, 1);
+}
+
 void OffscreenRenderer::frameScene()
 {
     osg::Node* scene = _viewer->getSceneData();
     if (!scene) return;
     const osg::BoundingSphere bs = scene->getBound();
     if (!bs.valid()) return;
-    const double fovyRad = osg::DegreesToRadians(_fovy);
-    const double aspect = static_cast<double>(_settings.width) / _settings.height;
-    const double halfFov = std::min(fovyRad, 2.0 * std::atan(std::tan(fovyRad / 2.0) * aspect)) / 2.0;
-    const double distance = bs.radius() / std::sin(halfFov);
-    osg::Vec3d dir(-0.5, -0.7, 0.55);
-    dir.normalize();
-    const osg::Vec3d eye = osg::Vec3d(bs.center()) + dir * distance;
-    _viewer->getCamera()->setViewMatrixAsLookAt(eye, bs.center(), osg::Vec3d(0, 0, 1));
+    osg::Vec3d eye, center, up;
+    framingPose(bs, _fovy, static_cast<double>(_settings.width) / _settings.height, eye, center, up);
+    _viewer->getCamera()->setViewMatrixAsLookAt(eye, center, up);
 }
 
 void OffscreenRenderer::realizeOnce()

@@ -182,8 +182,7 @@ void LoANode::traverse(osg::NodeVisitor& nv)
             _lastFrame = nv.getFrameStamp() ? nv.getFrameStamp()->getFrameNumber() : 0;
         }
     }
-    if (_distanceField.valid() && (cv || nv.getVisitorType() == osg::NodeVisitor::UPDATE_VISITOR))
-        _distanceField->accept(nv);
+    if (_distanceField.valid() && (cv || update)) _distanceField->accept(nv);
     osg::Group::traverse(nv);
 }
 

@@ -1,33 +1,12 @@
 // UsageScenario: interest overrides, ordered configurations, regions and focus; validation.
 #include <osgLoA/transitions/UsageScenario>
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
 namespace osgLoA
 {
-
-namespace
-{
-// True when every configuration combines the same metrics the same way.
-bool sameMetrics(const std::vector<const TransitionConfiguration*>& configs)
-{
-    for (const TransitionConfiguration* c : configs)
-    {
-        const TransitionConfiguration* a = configs.front();
-        if (c->getCombination() != a->getCombination() || c->getMetrics().size() != a->getMetrics().size())
-            return false;
-        for (const auto& m : c->getMetrics())
-        {
-            const SaliencyMetric* o = m.valid() ? a->getMetric(m->getKind()) : nullptr;
-            if (!o || o->getNear() != m->getNear() || o->getFar() != m->getFar() ||
-                o->getWeight() != m->getWeight())
-                return false;
-        }
-    }
-    return true;
-}
-} // namespace
 
 UsageScenario::UsageScenario() = default;
 
@@ -132,7 +111,10 @@ UsageScenario::Validation UsageScenario::validate() const
                                      " are in no configuration's scope: they will not be drawn");
                 break;
             }
-            if (!sameMetrics(inScope)) continue;
+            if (!std::all_of(inScope.begin(), inScope.end(),
+                             [&](const TransitionConfiguration* c)
+                             { return c->hasSameInterestAs(*inScope.front()); }))
+                continue;
             int gapBegin = -1;
             for (int k = 0; k <= 1000; ++k)
             {

@@ -2,6 +2,7 @@
 #ifndef OSGLOA_TESTS_TESTSUPPORT_H
 #define OSGLOA_TESTS_TESTSUPPORT_H 1
 
+#include <osg/Geode>
 #include <osg/Image>
 #include <osg/Node>
 
@@ -28,6 +29,10 @@ osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Imag
 
 /** Writes NAME-actual.png and NAME-diff.png beside the build for a failed comparison. */
 void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference);
+
+/** A Geode whose one Geometry holds the 8 corners of the box as points, so that its bound is
+ *  exactly the box (scenario tests place features by their boxes). */
+osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& maximum);
 
 } // namespace loatest
 
