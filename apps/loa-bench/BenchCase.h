@@ -26,3 +26,13 @@ std::vector<Row> interest(unsigned frames, std::string& renderer);
 /** Case "distance-field" (BenchDistanceField.cpp): the region-interest distance map at 512^2,
  *  1024^2 and 2048^2: CPU seeds, CPU exact EDT, GPU JFA, 1+JFA and JFA+2 against the exact EDT. */
 std::vector<Row> distanceField(unsigned frames, std::string& renderer);
+
+/** Case "abuffer" (BenchABuffer.cpp): the stencil-routed A-buffer at 640x480 on K = 1..12
+ *  transparent full-view quads, N = 1, 2, 4 (8 where GL_MAX_SAMPLES allows) samples and at most
+ *  1..4 routing passes: frame time against the error to the CPU reference of all K fragments. */
+std::vector<Row> abuffer(unsigned frames, std::string& renderer);
+
+/** Case "transitions" (BenchTransitions.cpp): paper 004's Table 1 on the demo city from the
+ *  oblique camera at 800x600, 1280x720 and 1920x1080: plain rendering, one homogeneous style
+ *  through the LoA pipeline, and every library scenario. */
+std::vector<Row> transitions(unsigned frames, std::string& renderer);

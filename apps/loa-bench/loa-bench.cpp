@@ -68,6 +68,15 @@ cases:
                  glFinish; error_mean = mean |error| in texels against the exact EDT,
                  error_max = fraction of texels off by more than one texel
 
+  abuffer        the stencil-routed A-buffer (docs/abuffer.md) on K full-view layers of
+                 controlled depth complexity, for N samples and a maximum of routing passes:
+                 ms per frame; error_mean / error_max = mean / max |difference| to the CPU
+                 reference compositor, 0..255
+  transitions    paper 004's Table 1 on the demo city from the oblique camera at 800x600,
+                 1280x720 and 1920x1080: plain rendering (loa_plain), one homogeneous style
+                 through the LoA pipeline, and each library scenario; error = fraction of
+                 pixels whose fragments did not all fit the A-buffer
+
 options:
   --case NAME    run this case (repeatable; default: all)
   --frames N     timed frames per configuration (default 10)
@@ -355,7 +364,9 @@ int main(int argc, char** argv)
                                                                {"import", import},
                                                                {"classify-appearance", classifyAppearance},
                                                                {"interest", interest},
-                                                               {"distance-field", distanceField}};
+                                                               {"distance-field", distanceField},
+                                                               {"abuffer", abuffer},
+                                                               {"transitions", transitions}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int

@@ -6,6 +6,8 @@
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageFile>
 #include <osgLoA/util/JsonString>
@@ -38,6 +40,12 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
   --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON
   --city "K=V ..."      demo city parameters, e.g. "seed=7 blocksX=6 blocksY=4"
                         (keys: see docs/demo-city.md); ignored with MODEL
+  --scenario NAME|FILE  draw with LoA transitions: wrap the scene in a LoA node carrying the
+                        usage scenario NAME of the library (loa-scenario list) or FILE
+                        (.osgt/.osgb/.osgx); the features are drawn in their configurations'
+                        graphic styles and composed by the stencil-routed A-buffer
+  --abuffer-samples N   A-buffer samples per pixel (default 4; at most GL_MAX_SAMPLES)
+  --abuffer-passes N    A-buffer routing passes at most (default 4)
   --program plain       draw with the project's loa_plain GLSL program instead of OSG's
                         fixed-function pipeline
   --gl-info             print the GL context's capabilities and exit
@@ -50,7 +58,8 @@ failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
 
 struct Options
 {
-    std::string model, out = "out/render.png", stats, city, program;
+    std::string model, out = "out/render.png", stats, city, program, scenario;
+    unsigned samplesABuffer = 4, passesABuffer = 4;
     loa::CameraChoice camera;
     int width = 1280, height = 720, samples = 0;
     unsigned frames = 0;
@@ -79,6 +88,12 @@ Options parse(int argc, char** argv)
             o.stats = args.value(a);
         else if (a == "--city")
             o.city = args.value(a);
+        else if (a == "--scenario")
+            o.scenario = args.value(a);
+        else if (a == "--abuffer-samples")
+            o.samplesABuffer = loa::parseCount(a, args.value(a), 64);
+        else if (a == "--abuffer-passes")
+            o.passesABuffer = loa::parseCount(a, args.value(a), 63);
         else if (a == "--program")
         {
             o.program = args.value(a);
@@ -95,6 +110,11 @@ Options parse(int argc, char** argv)
             throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
     }
     loa::checkCameraOptions(o.camera);
+    if (!o.scenario.empty() && !o.program.empty())
+        throw loa::UsageError(
+            "--scenario and --program exclude each other (a scenario's styles bring their programs)");
+    if (o.samplesABuffer == 0 || o.passesABuffer == 0)
+        throw loa::UsageError("--abuffer-samples and --abuffer-passes must be at least 1");
     if (osgDB::getLowerCaseFileExtension(o.out) != "png")
         throw loa::UsageError("--out '" + o.out + "' must name a .png file");
     return o;
@@ -156,6 +176,41 @@ int run(const Options& o)
                 .get());
         ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
     }
+    osg::ref_ptr<osgLoA::LoANode> loaNode;
+    if (!o.scenario.empty())
+    {
+        std::string origin;
+        osg::ref_ptr<osgLoA::UsageScenario> scenario;
+        try
+        {
+            scenario = osgLoA::ScenarioLibrary::load(o.scenario, &origin);
+        }
+        catch (const std::exception& e)
+        {
+            throw std::runtime_error(std::string("--scenario: ") + e.what());
+        }
+        if (o.samplesABuffer > unsigned(caps.maxSamples))
+            throw loa::UsageError("--abuffer-samples " + std::to_string(o.samplesABuffer) +
+                                  " exceeds this context's GL_MAX_SAMPLES (" +
+                                  std::to_string(caps.maxSamples) + ")");
+        loaNode = new osgLoA::LoANode;
+        loaNode->setScenario(scenario.get());
+        loaNode->addChild(scene.get());
+        osgLoA::TransitionRenderer::Settings rs = loaNode->getRenderer()->getSettings();
+        rs.samples = o.samplesABuffer;
+        rs.maxPasses = o.passesABuffer;
+        loaNode->getRenderer()->setSettings(rs);
+        try
+        {
+            loaNode->bind();
+        }
+        catch (const std::exception& e)
+        {
+            throw std::runtime_error("scenario '" + o.scenario +
+                                     "' cannot be used with this model: " + e.what());
+        }
+        scene = loaNode;
+    }
     renderer->setSceneData(scene.get());
     loa::applyCamera(*renderer, o.camera);
 
@@ -169,13 +224,36 @@ int run(const Options& o)
     std::cout << "rendered " << what << ": " << stats.summary() << "\n"
               << "view: " << o.camera.describe() << ", " << o.width << "x" << o.height
               << (o.samples ? ", " + std::to_string(o.samples) + "x MSAA" : std::string())
-              << (o.program.empty() ? ", fixed-function pipeline" : ", program " + o.program) << "\n"
+              << (!o.scenario.empty() ? ", scenario " + o.scenario
+                  : o.program.empty() ? ", fixed-function pipeline"
+                                      : ", program " + o.program)
+              << "\n"
               << "GL: " << caps.summary() << " via EGL " << renderer->getContext()->getPlatform() << "\n"
               << "scene built/loaded in " << std::fixed << std::setprecision(1) << loadMs << " ms\n";
     if (o.frames > 0)
         std::cout << "frame time over " << o.frames << " frames (after 1 warm-up, glFinish each): median "
                   << std::setprecision(2) << times.median() << " ms, min " << times.min() << " ms, max "
                   << times.max() << " ms\n";
+    if (loaNode)
+    {
+        const osgLoA::TransitionRenderer::Statistics& st = loaNode->getRenderer()->getStatistics();
+        std::cout << "LoA: " << st.drawnFeatures << " features drawn: " << st.sharedDraws
+                  << " in one style (shared pass), " << st.depthOnlyDraws << " in transition; "
+                  << st.aBufferDraws << " A-buffer draws, " << st.pingPongDraws
+                  << " ping-pong draws; A-buffer " << (st.aBuffer ? "used" : "not needed")
+                  << ", unsharp masking " << (st.unsharp ? "on" : "off") << "\n";
+        const osgLoA::ABufferFrameStatistics ab =
+            loaNode->getRenderer()->getABuffer()->getLastFrameStatistics();
+        const auto mem = osgLoA::TransitionRenderer::memory(
+            o.width, o.height, unsigned(std::max(ab.samples, 1)), unsigned(std::max(ab.memory.layers, 1)),
+            st.pingPongBuffer, st.unsharp);
+        std::cout << std::setprecision(1) << "GPU memory of the LoA passes: " << mem.totalBytes() / 1048576.0
+                  << " MiB (A-buffer " << mem.aBufferBytes / 1048576.0
+                  << " with N=" << std::max(ab.samples, 1) << " x " << std::max(ab.memory.layers, 1)
+                  << " layer(s), G-buffer " << mem.geometryBufferBytes / 1048576.0 << ", ping-pong "
+                  << mem.pingPongBytes / 1048576.0 << ", unsharp mask " << mem.unsharpBytes / 1048576.0
+                  << "); paper 004 formula W H (2N+7)/262144: " << mem.paperBytes / 1048576.0 << " MB\n";
+    }
     std::cout << "wrote " << o.out << "\n";
 
     if (!o.stats.empty())

@@ -11,11 +11,36 @@
 namespace osgLoA
 {
 
-LoANode::LoANode() : _evaluator(new ScenarioEvaluator) {}
+LoANode::LoANode() : _evaluator(new ScenarioEvaluator)
+{
+    _renderer = new TransitionRenderer(*this);
+}
 
 LoANode::LoANode(const LoANode& other, const osg::CopyOp& copyop)
-    : osg::Group(other, copyop), _scenario(other._scenario), _evaluator(new ScenarioEvaluator)
+    : osg::Group(other, copyop), _scenario(other._scenario), _evaluator(new ScenarioEvaluator),
+      _renderingEnabled(other._renderingEnabled)
 {
+    _renderer = new TransitionRenderer(*this);
+    _renderer->setSettings(other._renderer->getSettings());
+}
+
+LoANode::~LoANode()
+{
+    _renderer->unbind();
+}
+
+void LoANode::releaseGLObjects(osg::State* state) const
+{
+    osg::Group::releaseGLObjects(state);
+    _renderer->releaseGLObjects(state);
+    if (_distanceField.valid()) _distanceField->releaseGLObjects(state);
+}
+
+void LoANode::resizeGLObjectBuffers(unsigned int maxSize)
+{
+    osg::Group::resizeGLObjectBuffers(maxSize);
+    _renderer->resizeGLObjectBuffers(maxSize);
+    if (_distanceField.valid()) _distanceField->resizeGLObjectBuffers(maxSize);
 }
 
 void LoANode::setScenario(UsageScenario* scenario)
@@ -63,6 +88,13 @@ bool LoANode::needsBind() const
 
 void LoANode::bind()
 {
+    // bind() visits this node (FeatureIndex::build); its generic-visitor branch must not bind again.
+    struct Guard
+    {
+        bool& flag;
+        explicit Guard(bool& f) : flag(f) { flag = true; }
+        ~Guard() { flag = false; }
+    } guard(_inBind);
     _childrenChanged = false;
     _boundScenario = _scenario.get();
     _boundRevision = _scenario.valid() ? _scenario->getRevision() : ~0u;
@@ -72,6 +104,7 @@ void LoANode::bind()
     _index.build(*this);
     _index.updateBounds();
     _visible.assign(_index.size(), 0);
+    _renderer->unbind();
     if (!_scenario.valid()) return;
     try
     {
@@ -80,6 +113,7 @@ void LoANode::bind()
         ss->setDataVariance(osg::Object::DYNAMIC);
         TransitionUniforms::applyScenario(*ss, *_evaluator);
         setUpDistanceField();
+        _renderer->bind(*_evaluator, _index);
         if (_scenario->getFocusFeature() != 0 && !_evaluator->getView().focus.valid())
             OSG_WARN << "osgLoA::LoANode: scenario '" << _scenario->getName() << "' focuses on feature "
                      << _scenario->getFocusFeature()
@@ -89,6 +123,7 @@ void LoANode::bind()
     {
         _bindError = e.what();
         _evaluator = new ScenarioEvaluator;
+        _renderer->unbind();
         throw;
     }
 }
@@ -180,9 +215,40 @@ void LoANode::traverse(osg::NodeVisitor& nv)
                     *ss, camera->getViewMatrix() * osg::Matrixd::inverse(*cv->getModelViewMatrix()));
             ++_evaluations;
             _lastFrame = nv.getFrameStamp() ? nv.getFrameStamp()->getFrameNumber() : 0;
+            if (_distanceField.valid()) _distanceField->accept(nv);
+            if (_renderingEnabled && _renderer->isBound())
+            {
+                _renderer->cull(*cv, *_evaluator);
+                return;
+            }
+            osg::Group::traverse(nv);
+            return;
         }
     }
     if (_distanceField.valid() && (cv || update)) _distanceField->accept(nv);
+    // Generic visitors (program checks, GL object compilation before the first frame) bind the
+    // scenario and reach the renderer's passes, so that their programs are compiled and checked
+    // up front rather than in the middle of the first frame's draw.
+    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR && _renderingEnabled && _scenario.valid() &&
+        !_inBind)
+    {
+        {
+            std::lock_guard<std::mutex> lock(_mutex);
+            if (needsBind())
+            {
+                try
+                {
+                    bind();
+                }
+                catch (const std::exception& e)
+                {
+                    OSG_WARN << "osgLoA::LoANode: " << e.what() << "; drawing the model unstyled"
+                             << std::endl;
+                }
+            }
+        }
+        if (_renderer->isBound()) _renderer->getInternalNode()->accept(nv);
+    }
     osg::Group::traverse(nv);
 }
 

@@ -154,7 +154,9 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         // landmarks (static interest >= 0.8) stay photorealistic.
         auto s = makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
                                     "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
-                                    "3:1 with view distance); landmarks keep their detail.");
+                                    "3:1 with view distance); landmarks keep their detail and, in "
+                                    "map-like views, grow, turn their best view to the viewer and "
+                                    "flatten (§3.2.2).");
         addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), new M(M::VIEW_DISTANCE, 200.0, 1200.0, 1.0)},
                      "photorealistic", "cartographic", 0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
         TransitionConfiguration::FeatureTypes allTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes));
@@ -163,6 +165,9 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         landmarks->setInterestRange(osg::Vec2f(0.8f, 1.0f));
         landmarks->addMetric(new M(M::FEATURE_INTEREST, 0.0, 0.0));
         s->addConfiguration(landmarks.get());
+        // §3.2.2: the defaults morph landmarks over the same view angles (25-60 degrees) as
+        // the transitions above; non-landmarks stay (sinking off).
+        s->setLandmarkDeformation(new LandmarkDeformation);
         return s;
     }
     if (name == "route")

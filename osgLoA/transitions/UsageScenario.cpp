@@ -14,7 +14,10 @@ UsageScenario::UsageScenario(const UsageScenario& other, const osg::CopyOp& copy
     : osg::Object(other, copyop), _description(other._description),
       _interest(other._interest.valid() ? static_cast<FeatureInterest*>(copyop(other._interest.get()))
                                         : nullptr),
-      _focusFeature(other._focusFeature)
+      _focusFeature(other._focusFeature),
+      _landmarkDeformation(other._landmarkDeformation.valid()
+                               ? static_cast<LandmarkDeformation*>(copyop(other._landmarkDeformation.get()))
+                               : nullptr)
 {
     for (const auto& c : other._configurations)
         _configurations.push_back(c.valid() ? static_cast<TransitionConfiguration*>(copyop(c.get()))
@@ -68,6 +71,11 @@ UsageScenario::Validation UsageScenario::validate() const
             usableRegion = true;
         else
             v.errors.push_back("region: " + e);
+    }
+    if (_landmarkDeformation.valid())
+    {
+        const std::string e = _landmarkDeformation->validate();
+        if (!e.empty()) v.errors.push_back("landmark deformation: " + e);
     }
     std::set<std::string> names;
     std::set<FeatureType> drawn;

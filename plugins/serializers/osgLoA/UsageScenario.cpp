@@ -16,4 +16,6 @@ REGISTER_OBJECT_WRAPPER(osgLoA_UsageScenario, new osgLoA::UsageScenario, osgLoA:
                                 osgLoA::TransitionConfiguration);
     ADD_BOUNDED_LIST_SERIALIZER(Regions, osgLoA::UsageScenario::Regions, osgLoA::RegionOfInterest);
     ADD_UINT_SERIALIZER(FocusFeature, 0u);
+    // Last, so that text files written before it read as before (no deformation).
+    ADD_CHECKED_OBJECT_SERIALIZER(LandmarkDeformation, osgLoA::LandmarkDeformation, NULL);
 }

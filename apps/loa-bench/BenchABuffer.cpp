@@ -1,0 +1,139 @@
+// loa-bench case "abuffer": the stencil-routed A-buffer (osgLoA::StencilRoutedABuffer) on a scene
+// of controlled depth complexity: K transparent quads covering the view, drawn in a scrambled
+// depth order, for N samples per pass and a maximum number of routing passes; frame time against
+// the error to the CPU reference composite of all K fragments (osgLoA::ReferenceCompositor).
+#include "BenchCase.h"
+
+#include <osgLoA/compositing/ReferenceCompositor>
+#include <osgLoA/compositing/StencilRoutedABuffer>
+#include <osgLoA/render/OffscreenRenderer>
+#include <osgLoA/util/ImageCompare>
+
+#include <osg/Geometry>
+
+#include <algorithm>
+#include <iomanip>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+namespace
+{
+const osg::Vec4 kBackground(51 / 255.0f, 102 / 255.0f, 153 / 255.0f, 1.0f);
+
+struct Layer
+{
+    float distance;
+    osg::Vec4 color;
+};
+
+/** K layers at distances 1, 1.5, ... in a scrambled order, colours in whole 1/255 steps. */
+std::vector<Layer> layersOf(int k)
+{
+    std::mt19937 rng(unsigned(k) * 31u + 7u);
+    std::vector<int> order(std::size_t(k), 0);
+    for (int i = 0; i < k; ++i)
+        order[std::size_t(i)] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<Layer> layers;
+    for (int i = 0; i < k; ++i)
+        layers.push_back({1.0f + 0.5f * float(order[std::size_t(i)]),
+                          osg::Vec4(float(rng() % 256) / 255.0f, float(rng() % 256) / 255.0f,
+                                    float(rng() % 256) / 255.0f, float(40 + rng() % 180) / 255.0f)});
+    return layers;
+}
+
+osg::ref_ptr<osg::Geometry> quad(const Layer& l)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    for (const osg::Vec2& c : {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)})
+        v->push_back(osg::Vec3(c.x(), c.y(), -l.distance));
+    g->setVertexArray(v.get());
+    osg::ref_ptr<osg::Vec4Array> c = new osg::Vec4Array;
+    c->push_back(l.color);
+    g->setColorArray(c.get(), osg::Array::BIND_OVERALL);
+    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLE_FAN, 0, 4));
+    return g;
+}
+
+/** The reference: every pixel holds the same K fragments (full-view quads). */
+osg::ref_ptr<osg::Image> referenceImage(const std::vector<Layer>& layers, int w, int h)
+{
+    osgLoA::ReferenceCompositor::FragmentList f;
+    for (const Layer& l : layers)
+    {
+        osgLoA::ReferenceCompositor::Fragment x;
+        x.color = l.color;
+        x.depth = l.distance / 10.0f;
+        f.push_back(x);
+    }
+    osgLoA::ReferenceCompositor::FragmentImage one(1, 1);
+    one.at(0, 0) = f;
+    const osg::ref_ptr<osg::Image> px = osgLoA::ReferenceCompositor().compositeImage(one, kBackground);
+    osg::ref_ptr<osg::Image> img = new osg::Image;
+    img->allocateImage(w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            std::copy(px->data(0, 0), px->data(0, 0) + 4, img->data(x, y));
+    return img;
+}
+} // namespace
+
+std::vector<Row> abuffer(unsigned frames, std::string& renderer)
+{
+    std::vector<Row> rows;
+    const int w = 640, h = 480;
+    osgLoA::OffscreenRenderer::Settings s;
+    s.width = w;
+    s.height = h;
+    s.clearColor = kBackground;
+    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
+    renderer = r->getCapabilities().renderer;
+    osg::Camera* cam = r->getCamera();
+    cam->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    cam->setProjectionMatrixAsOrtho(-1.0, 1.0, -1.0, 1.0, 0.0, 10.0);
+    cam->setViewMatrix(osg::Matrix::identity());
+    const int maxSamples = r->getCapabilities().maxSamples;
+    for (int n : {1, 2, 4, 8})
+    {
+        if (n > maxSamples) continue;
+        for (int maxPasses : {1, 2, 3, 4})
+        {
+            // One A-buffer per configuration: its storage grows only to what its rows need.
+            osg::ref_ptr<osgLoA::StencilRoutedABuffer> ab = new osgLoA::StencilRoutedABuffer(n, maxPasses);
+            ab->getRoutedStateSet()->setAttribute(
+                osgLoA::StencilRoutedABuffer::createVertexColorProgram().get());
+            osg::ref_ptr<osg::Group> root = new osg::Group;
+            root->addChild(ab->getCamera());
+            root->addChild(ab->createResolveNode().get());
+            r->setSceneData(root.get());
+            for (int k : {1, 2, 4, 8, 12})
+            {
+                const std::vector<Layer> layers = layersOf(k);
+                osg::Group* g = ab->getRoutedGroup();
+                g->removeChildren(0, g->getNumChildren());
+                for (const Layer& l : layers)
+                    g->addChild(quad(l).get());
+                Row row;
+                row.times = r->timeFrames(frames);
+                const osgLoA::ABufferFrameStatistics st = ab->getLastFrameStatistics();
+                const auto cmp =
+                    osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h), 1);
+                std::ostringstream p, m, x;
+                p << "N=" << n << " max=" << maxPasses << " K=" << k << " passes=" << st.passes << " " << w
+                  << "x" << h << (st.truncated ? " truncated" : "") << " " << std::fixed
+                  << std::setprecision(1) << st.memory.megabytes() << " MiB";
+                m << std::setprecision(4) << cmp.meanDifference;
+                x << cmp.maxDifference;
+                row.parameters = p.str();
+                row.errorMean = m.str();
+                row.errorMax = x.str();
+                rows.push_back(row);
+                std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
+                          << row.errorMean << "/255, max " << row.errorMax << "/255\n";
+            }
+        }
+    }
+    return rows;
+}

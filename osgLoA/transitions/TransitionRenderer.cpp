@@ -1,0 +1,762 @@
+// TransitionRenderer: Algorithm 1 of paper 004 and the G-buffer, A-buffer, ping-pong and
+// compositing passes around it.
+#include <osgLoA/transitions/TransitionRenderer>
+
+#include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/styles/GraphicStyle>
+#include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/transitions/LandmarkDeformation>
+#include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/TransitionUniforms>
+#include <osgLoA/util/StateSetVisitor>
+
+#include <osg/Notify>
+#include <osg/Texture>
+#include <osg/Transform>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+namespace osgLoA
+{
+
+namespace
+{
+constexpr unsigned kN = UsageScenario::kMaxConfigurations;
+constexpr unsigned kFrontDepthUnit = 14;
+constexpr int kFirstRenderOrder = 1000;
+constexpr unsigned kABufferColorUnit = 12, kABufferDepthUnit = 13;
+
+const char* const kVertexShaders[] = {"loa_style.vert.glsl", "loa_landmark.vert.glsl"};
+
+enum ProxyKind
+{
+    PROXY_GBUFFER = 0,
+    PROXY_ABUFFER,
+    PROXY_PING0,
+    PROXY_PING1
+};
+
+/** The child of a pass camera: traversing it draws the features in that camera's passes. */
+class PassProxy : public osg::Node
+{
+public:
+    PassProxy(TransitionRenderer* renderer, ProxyKind kind,
+              std::function<void(osgUtil::CullVisitor&, ProxyKind)> fn)
+        : _renderer(renderer), _kind(kind), _fn(std::move(fn))
+    {
+        setCullingActive(false);
+    }
+    void traverse(osg::NodeVisitor& nv) override
+    {
+        osg::ref_ptr<TransitionRenderer> r;
+        osgUtil::CullVisitor* cv = nv.asCullVisitor();
+        if (cv && _renderer.lock(r)) _fn(*cv, _kind);
+    }
+
+private:
+    osg::observer_ptr<TransitionRenderer> _renderer;
+    ProxyKind _kind;
+    std::function<void(osgUtil::CullVisitor&, ProxyKind)> _fn;
+};
+
+/** On a feature's node (Group, Geode, ...): lets the renderer decide whether it draws. */
+class FeatureNodeCallback : public osg::NodeCallback
+{
+public:
+    FeatureNodeCallback(TransitionRenderer* r, unsigned entry) : _renderer(r), _entry(entry) {}
+    void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+    {
+        osg::ref_ptr<TransitionRenderer> r;
+        osgUtil::CullVisitor* cv = nv->asCullVisitor();
+        if (!cv || !_renderer.lock(r) || !r->isDrawing())
+        {
+            traverse(node, nv);
+            return;
+        }
+        r->drawFeature(_entry, *node, *cv, this);
+    }
+
+private:
+    osg::observer_ptr<TransitionRenderer> _renderer;
+    unsigned _entry;
+};
+
+/** On a feature that is a Drawable: the same, drawing the drawable under the feature's state. */
+class FeatureDrawableCallback : public osg::DrawableCullCallback
+{
+public:
+    FeatureDrawableCallback(TransitionRenderer* r, unsigned entry) : _renderer(r), _entry(entry) {}
+    bool cull(osg::NodeVisitor* nv, osg::Drawable* drawable, osg::RenderInfo*) const override
+    {
+        if (_inside) return false; // the renderer's own apply of the drawable
+        osg::ref_ptr<TransitionRenderer> r;
+        osgUtil::CullVisitor* cv = nv->asCullVisitor();
+        if (!cv || !_renderer.lock(r) || !r->isDrawing()) return false;
+        _inside = true;
+        r->drawFeature(_entry, *drawable, *cv, nullptr);
+        _inside = false;
+        return true;
+    }
+
+private:
+    osg::observer_ptr<TransitionRenderer> _renderer;
+    unsigned _entry;
+    mutable bool _inside = false;
+};
+
+bool opaqueMaterial(osg::Node& node)
+{
+    bool opaque = true;
+    StateSetVisitor v(
+        [&](osg::StateSet& ss)
+        {
+            if (ss.getRenderingHint() == osg::StateSet::TRANSPARENT_BIN ||
+                (ss.getMode(GL_BLEND) & osg::StateAttribute::ON))
+                opaque = false;
+            for (unsigned u = 0; u < ss.getTextureAttributeList().size(); ++u)
+            {
+                const osg::Texture* t = dynamic_cast<const osg::Texture*>(
+                    ss.getTextureAttribute(u, osg::StateAttribute::TEXTURE));
+                if (u == 0 && t && t->getImage(0) && t->getImage(0)->isImageTranslucent()) opaque = false;
+            }
+        });
+    node.accept(v);
+    return opaque;
+}
+
+osg::Uniform* uniform(osg::StateSet& ss, const char* name, osg::Uniform::Type type, unsigned n = 1)
+{
+    osg::Uniform* u = ss.getOrCreateUniform(name, type, n);
+    u->setDataVariance(osg::Object::DYNAMIC);
+    return u;
+}
+
+/** The projection with near and far planes fitted to a sphere given in view coordinates. */
+osg::Matrixd fitDepthRange(const osg::Matrixd& p, const osg::BoundingSphere& viewSphere, double& zNear,
+                           double& zFar, bool& orthographic)
+{
+    orthographic = p(3, 3) == 1.0 && p(2, 3) == 0.0;
+    const double zc = -viewSphere.center().z();
+    zFar = zc + viewSphere.radius();
+    zNear = zc - viewSphere.radius();
+    double l, r, b, t, n0, f0;
+    if (orthographic)
+    {
+        if (!(zFar > zNear)) zFar = zNear + 1.0;
+        p.getOrtho(l, r, b, t, n0, f0);
+        return osg::Matrixd::ortho(l, r, b, t, zNear, zFar);
+    }
+    if (!(zFar > 0.0)) zFar = 1.0;
+    zNear = std::max(zNear, zFar * 1.0e-4);
+    if (!p.getFrustum(l, r, b, t, n0, f0) || !(n0 > 0.0)) return p;
+    const double s = zNear / n0;
+    return osg::Matrixd::frustum(l * s, r * s, b * s, t * s, zNear, zFar);
+}
+
+} // namespace
+
+TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
+{
+    // Render orders after every other pre-render camera of the scene (the distance field's
+    // jump-flooding passes count from 0).
+    _gbuffer = new GeometryBuffer(kFirstRenderOrder);
+    _pingPong = new PingPongBuffer(kFirstRenderOrder + 2);
+    _unsharp = new DepthUnsharpMask(kFirstRenderOrder + 4);
+    _unsharp->setInput(_gbuffer->getTexture(GeometryBuffer::DEPTH), _gbuffer->getTexture(GeometryBuffer::ID));
+    _compositing = new ImageCompositing;
+    _compositing->setGeometryBuffer(_gbuffer.get());
+    _compositing->setPingPongBuffer(_pingPong.get());
+    _compositing->setDepthUnsharpMask(_unsharp.get());
+    setSettings(_settings);
+
+    auto fn = [this](osgUtil::CullVisitor& cv, ProxyKind kind)
+    {
+        if (kind == PROXY_GBUFFER)
+        {
+            for (unsigned j = 0; j < _styles.size(); ++j)
+                if (_sharedAny[j])
+                    traversePass(cv, Pass::SHARED, int(j), _styles[j].parameters.get(),
+                                 _styles[j].shared.get());
+            if (_depthAny) traversePass(cv, Pass::DEPTH_ONLY, -1, nullptr, _depthOnly.get());
+            if (_hasUnfeatured) traversePass(cv, Pass::UNFEATURED, -1, nullptr, _unfeatured.get());
+        }
+        else if (kind == PROXY_ABUFFER)
+        {
+            for (unsigned j = 0; j < _styles.size(); ++j)
+                if (_aAny[j])
+                    traversePass(cv, Pass::A_BUFFER, int(j), _styles[j].parameters.get(),
+                                 _styles[j].aBuffer.get());
+        }
+        else
+        {
+            const unsigned target = kind == PROXY_PING0 ? 0u : 1u;
+            for (unsigned j = 0; j < _styles.size(); ++j)
+                if (_pingAny[j] && _styles[j].pingTarget == target)
+                    traversePass(cv, Pass::PING_PONG, int(j), _styles[j].parameters.get(),
+                                 _styles[j].pingPong.get());
+        }
+    };
+    _proxy[PROXY_GBUFFER] = new PassProxy(this, PROXY_GBUFFER, fn);
+    _proxy[PROXY_ABUFFER] = new PassProxy(this, PROXY_ABUFFER, fn);
+    _proxy[PROXY_PING0] = new PassProxy(this, PROXY_PING0, fn);
+    _proxy[PROXY_PING1] = new PassProxy(this, PROXY_PING1, fn);
+    _gbuffer->getCamera()->addChild(_proxy[PROXY_GBUFFER].get());
+    _aBuffer->getRoutedGroup()->addChild(_proxy[PROXY_ABUFFER].get());
+    _pingPong->getCamera(0)->addChild(_proxy[PROXY_PING0].get());
+    _pingPong->getCamera(1)->addChild(_proxy[PROXY_PING1].get());
+
+    _internal = new osg::Group;
+    _passStates = new osg::Group;
+    _internal->addChild(_gbuffer->getCamera());
+    _internal->addChild(_pingPong->getCamera(0));
+    _internal->addChild(_pingPong->getCamera(1));
+    _internal->addChild(_unsharp->getCamera(0));
+    _internal->addChild(_unsharp->getCamera(1));
+    _internal->addChild(_compositing->getNode());
+    _internal->addChild(_passStates.get());
+    _internal->addChild(_aBuffer->getCamera());
+
+    _common = new osg::StateSet;
+    _common->setDataVariance(osg::Object::DYNAMIC);
+    _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
+    _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
+    uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
+    uniform(*_common, "loa_frontDepth", osg::Uniform::SAMPLER_2D)->set(int(kFrontDepthUnit));
+}
+
+TransitionRenderer::~TransitionRenderer()
+{
+    removeCallbacks();
+}
+
+void TransitionRenderer::setSettings(const Settings& s)
+{
+    if (s.samples == 0)
+        throw std::invalid_argument("TransitionRenderer: the A-buffer needs at least 1 sample");
+    if (s.maxPasses == 0)
+        throw std::invalid_argument("TransitionRenderer: at least 1 routing pass is needed");
+    if (!(s.depthEpsilon >= 0.0f) || s.depthEpsilon > 0.01f)
+        throw std::invalid_argument("TransitionRenderer: depth epsilon must be in [0, 0.01]");
+    const bool rebuild =
+        !_aBuffer.valid() || s.samples != _settings.samples || s.maxPasses != _settings.maxPasses;
+    _settings = s;
+    if (rebuild)
+    {
+        if (_aBuffer.valid() && _proxy[PROXY_ABUFFER].valid())
+            _aBuffer->getRoutedGroup()->removeChild(_proxy[PROXY_ABUFFER].get());
+        _aBuffer = new StencilRoutedABuffer(int(s.samples), int(s.maxPasses));
+        // Same matrices as the G-buffer (the front-depth test compares their depths).
+        _aBuffer->getCamera()->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
+        _aBuffer->getCamera()->setRenderOrder(osg::Camera::PRE_RENDER, kFirstRenderOrder + 1);
+        if (_proxy[PROXY_ABUFFER].valid()) _aBuffer->getRoutedGroup()->addChild(_proxy[PROXY_ABUFFER].get());
+        _aBuffer->addResolveState(_compositing->getStateSet(), kABufferColorUnit, kABufferDepthUnit);
+        // Local arrays sized to the fragments that can occur: the A-buffer's N x passes plus the
+        // G-buffer's opaque colour and the ping-pong fragment.
+        _aBuffer->setMaxFragmentsDefine(_compositing->getStateSet(), 2);
+        if (_internal.valid())
+        {
+            _internal->removeChildren(7, _internal->getNumChildren() - 7);
+            _internal->addChild(_aBuffer->getCamera());
+        }
+    }
+    _compositing->setMergeEpsilon(s.mergeSurfaces ? s.depthEpsilon : -1.0f);
+    for (auto& st : _styles)
+        for (osg::StateSet* ss : {st.aBuffer.get(), st.pingPong.get()})
+            if (ss) ss->getOrCreateUniform("loa_depthEpsilon", osg::Uniform::FLOAT)->set(s.depthEpsilon);
+}
+
+osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleShader, const char* passDefine)
+{
+    const std::string key = styleShader + "|" + passDefine;
+    auto it = _programs.find(key);
+    if (it != _programs.end()) return it->second;
+    osg::ref_ptr<osg::Program> p = new osg::Program;
+    p->setName("loa-" + (styleShader.empty() ? std::string("depth") : styleShader) + "-" + passDefine);
+    for (const char* v : kVertexShaders)
+        p->addShader(ShaderLibrary::createShader(v).get());
+    p->addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
+    if (!styleShader.empty()) p->addShader(ShaderLibrary::createShader(styleShader).get());
+    if (std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos)
+        p->addShader(ShaderLibrary::createShader("loa_abuffer_write.frag.glsl").get());
+    // The pass's main with its define after the #version line.
+    const ShaderLibrary::Source main = ShaderLibrary::getSource("loa_pass.frag.glsl");
+    std::string text = main.text;
+    const std::size_t eol = text.find('\n');
+    std::string defines;
+    std::string d = passDefine;
+    for (std::size_t start = 0; start < d.size();)
+    {
+        std::size_t end = d.find(' ', start);
+        if (end == std::string::npos) end = d.size();
+        defines += "#define " + d.substr(start, end - start) + " 1\n";
+        start = end + 1;
+    }
+    text.insert(eol == std::string::npos ? text.size() : eol + 1, defines);
+    osg::ref_ptr<osg::Shader> pass = new osg::Shader(osg::Shader::FRAGMENT, text);
+    pass->setName("loa_pass.frag.glsl[" + d + "]");
+    p->addShader(pass.get());
+    _programs[key] = p;
+    return p;
+}
+
+void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureIndex& index)
+{
+    unbind();
+    const UsageScenario* scenario = evaluator.getScenario();
+    if (!scenario) return;
+    const auto& configs = scenario->getConfigurations();
+    const unsigned n = unsigned(std::min<std::size_t>(configs.size(), kN));
+    _styles.assign(n, StyleState());
+    int visibleMask = 0;
+    osg::Uniform* edge = uniform(*_common, "loa_styleEdge", osg::Uniform::FLOAT_VEC4, kN);
+    osg::Uniform* unsharp = uniform(*_common, "loa_styleUnsharp", osg::Uniform::FLOAT, kN);
+    _maxUnsharpSigma = 0.0f;
+    osg::Texture2D* frontDepth = _gbuffer->getTexture(GeometryBuffer::DEPTH);
+    for (unsigned j = 0; j < n; ++j)
+    {
+        StyleState& st = _styles[j];
+        osg::ref_ptr<GraphicStyle> style;
+        try
+        {
+            style = GraphicStyleCatalog::instance().create(configs[j]->getStyle());
+        }
+        catch (const std::invalid_argument& e)
+        {
+            throw std::invalid_argument("configuration '" + configs[j]->getName() + "': " + e.what());
+        }
+        st.style = style;
+        st.visible = style->getVisible();
+        st.opaque = style->getOpaque();
+        st.parameters = style->getParameters();
+        edge->setElement(j, _settings.edges ? style->getEdge() : osg::Vec4f());
+        const float lambda = _settings.unsharpMasking ? style->getUnsharpMaskStrength() : 0.0f;
+        unsharp->setElement(j, lambda);
+        if (lambda > 0.0f) _maxUnsharpSigma = std::max(_maxUnsharpSigma, style->getUnsharpMaskRadius());
+        if (!st.visible) continue;
+        visibleMask |= 1 << j;
+        const std::string frag = st.style->getFragmentShader();
+        auto passState = [&](const char* define, bool frontDepthNeeded)
+        {
+            osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
+            ss->setAttributeAndModes(program(frag, define).get());
+            ss->addUniform(new osg::Uniform("loa_configuration", int(j)));
+            if (frontDepthNeeded)
+            {
+                ss->setTextureAttribute(kFrontDepthUnit, frontDepth);
+                ss->addUniform(new osg::Uniform("loa_depthEpsilon", _settings.depthEpsilon));
+            }
+            return ss;
+        };
+        st.shared = passState("LOA_PASS_GBUFFER_COLOR", false);
+        st.aBuffer = passState("LOA_PASS_ABUFFER", true);
+        st.pingPong = passState("LOA_PASS_PINGPONG", true);
+        for (osg::StateSet* ss : {st.shared.get(), st.aBuffer.get(), st.pingPong.get()})
+        {
+            osg::ref_ptr<osg::Node> holder = new osg::Node;
+            holder->setStateSet(ss);
+            _passStates->addChild(holder.get());
+        }
+    }
+    uniform(*_common, "loa_visibleStyles", osg::Uniform::INT)->set(visibleMask);
+    _depthOnly = new osg::StateSet;
+    _depthOnly->setAttributeAndModes(program("", "LOA_PASS_GBUFFER_DEPTH").get());
+    _unfeatured = new osg::StateSet;
+    {
+        osg::ref_ptr<const GraphicStyle> photo = GraphicStyleCatalog::instance().prototype("photorealistic");
+        _unfeatured->setAttributeAndModes(program(photo.valid()
+                                                      ? photo->getFragmentShader()
+                                                      : std::string("loa_style_photorealistic.frag.glsl"),
+                                                  "LOA_PASS_GBUFFER_COLOR LOA_UNFEATURED")
+                                              .get());
+        _unfeatured->addUniform(new osg::Uniform("loa_configuration", 0));
+        _unfeatured->addUniform(new osg::Uniform("loa_featureId", 0u));
+    }
+    for (osg::StateSet* ss : {_depthOnly.get(), _unfeatured.get()})
+    {
+        osg::ref_ptr<osg::Node> holder = new osg::Node;
+        holder->setStateSet(ss);
+        _passStates->addChild(holder.get());
+    }
+    LandmarkDeformation::applyScenario(*_common, scenario->getLandmarkDeformation());
+
+    // Features: per-feature state, the ping-pong routing, opaque materials, callbacks.
+    const auto& features = evaluator.features();
+    _featureState.assign(features.size(), nullptr);
+    _featureOfEntry.assign(index.size(), -1);
+    _opaqueMaterial.assign(features.size(), 1);
+    _routedToPingPong.assign(features.size(), 0);
+    _decisions.assign(features.size(), Decision());
+    for (std::size_t i = 0; i < features.size(); ++i)
+    {
+        const FeatureIndex::Entry& e = index.entries()[features[i].entry];
+        _featureOfEntry[features[i].entry] = int(i);
+        osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
+        ss->setDataVariance(osg::Object::DYNAMIC);
+        uniform(*ss, "loa_featureType", osg::Uniform::INT)->set(int(e.feature->getType()));
+        uniform(*ss, "loa_featureId", osg::Uniform::UNSIGNED_INT)->set(e.feature->getId());
+        _featureState[i] = ss;
+        if (osg::Node* node = e.node.get()) _opaqueMaterial[i] = opaqueMaterial(*node) ? 1 : 0;
+        const auto& subs = _settings.pingPongSubTypes;
+        _routedToPingPong[i] = _settings.pingPong && e.feature->getType() == FeatureType::Green &&
+                               std::find(subs.begin(), subs.end(), e.feature->getSubType()) != subs.end();
+    }
+    // Ping-pong targets alternate over the configurations that forests match.
+    unsigned rank = 0;
+    for (unsigned j = 0; j < n; ++j)
+    {
+        bool used = false;
+        for (std::size_t i = 0; i < features.size() && !used; ++i)
+        {
+            if (!_routedToPingPong[i]) continue;
+            const ScenarioEvaluator::Match* m = evaluator.matchesOf(features[i]);
+            for (unsigned k = 0; k < features[i].numMatches; ++k)
+                used = used || m[k].configuration == j;
+        }
+        _styles[j].pingTarget = used ? (rank++ & 1u) : 0u;
+    }
+    _sharedAny.assign(n, 0);
+    _aAny.assign(n, 0);
+    _pingAny.assign(n, 0);
+    installCallbacks(index);
+    _bound = true;
+}
+
+void TransitionRenderer::installCallbacks(const FeatureIndex& index)
+{
+    _nested.assign(index.size(), {});
+    _paths.assign(index.size(), {});
+    _hasUnfeatured = false;
+    for (unsigned e = 0; e < index.size(); ++e)
+    {
+        const FeatureIndex::Entry& entry = index.entries()[e];
+        _paths[e] = entry.path;
+        if (entry.parent >= 0) _nested[unsigned(entry.parent)].push_back(e);
+        osg::Node* node = entry.node.get();
+        if (!node) continue;
+        osg::ref_ptr<osg::Callback> cb;
+        if (osg::Drawable* d = node->asDrawable())
+        {
+            if (d->getCullCallback())
+            {
+                OSG_WARN << "osgLoA::TransitionRenderer: feature " << entry.feature->getId()
+                         << " is a drawable with its own cull callback; it is drawn unstyled" << std::endl;
+                continue;
+            }
+            cb = new FeatureDrawableCallback(this, e);
+            d->setCullCallback(cb.get());
+        }
+        else
+        {
+            cb = new FeatureNodeCallback(this, e);
+            node->addCullCallback(cb.get());
+        }
+        _callbacks.emplace_back(node, cb);
+    }
+    // Geometry outside every feature is drawn once, photorealistic, in the G-buffer pass.
+    struct Unfeatured : public osg::NodeVisitor
+    {
+        Unfeatured() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        bool found = false;
+        void apply(osg::Node& n) override
+        {
+            if (Feature::get(n)) return;
+            traverse(n);
+        }
+        void apply(osg::Drawable& d) override
+        {
+            if (!Feature::get(d)) found = true;
+        }
+    } v;
+    for (unsigned c = 0; c < _node.getNumChildren(); ++c)
+        _node.getChild(c)->accept(v);
+    _hasUnfeatured = v.found;
+}
+
+void TransitionRenderer::removeCallbacks()
+{
+    for (auto& c : _callbacks)
+    {
+        osg::ref_ptr<osg::Node> node;
+        if (!c.first.lock(node)) continue;
+        if (osg::Drawable* d = node->asDrawable())
+        {
+            if (d->getCullCallback() == c.second.get()) d->setCullCallback(nullptr);
+        }
+        else
+            node->removeCullCallback(c.second.get());
+    }
+    _callbacks.clear();
+}
+
+void TransitionRenderer::unbind()
+{
+    removeCallbacks();
+    _passStates->removeChildren(0, _passStates->getNumChildren());
+    _bound = false;
+    _styles.clear();
+    _featureState.clear();
+    _decisions.clear();
+}
+
+void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
+{
+    std::fill(_sharedAny.begin(), _sharedAny.end(), 0);
+    std::fill(_aAny.begin(), _aAny.end(), 0);
+    std::fill(_pingAny.begin(), _pingAny.end(), 0);
+    _depthAny = false;
+    const auto& features = evaluator.features();
+    const LandmarkDeformation* deformation = evaluator.getScenario()->getLandmarkDeformation();
+    const FeatureIndex& index = _node.getFeatureIndex();
+    const LandmarkDeformation::View view = LandmarkDeformation::View::fromViewToScene(_viewToSceneMatrix);
+    for (std::size_t i = 0; i < features.size(); ++i)
+    {
+        Decision& d = _decisions[i];
+        d = Decision();
+        const ScenarioEvaluator::FeatureState& fs = features[i];
+        if (!fs.visible) continue;
+        const ScenarioEvaluator::Match* m = evaluator.matchesOf(fs);
+        unsigned contributing = 0, visibleMask = 0;
+        int last = -1;
+        for (unsigned k = 0; k < fs.numMatches; ++k)
+        {
+            if (!m[k].mayContribute || m[k].configuration >= _styles.size()) continue;
+            ++contributing;
+            last = int(m[k].configuration);
+            if (_styles[m[k].configuration].visible) visibleMask |= 1u << m[k].configuration;
+        }
+        if (visibleMask == 0) continue;
+        const StyleState* only = contributing == 1 ? &_styles[unsigned(last)] : nullptr;
+        if (only && only->opaque && _opaqueMaterial[i])
+        {
+            d.shared = last;
+            _sharedAny[unsigned(last)] = 1;
+            ++_stats.sharedDraws;
+        }
+        else
+        {
+            d.depthOnly = _opaqueMaterial[i] != 0;
+            _depthAny = _depthAny || d.depthOnly;
+            if (d.depthOnly) ++_stats.depthOnlyDraws;
+            (_routedToPingPong[i] ? d.pingMask : d.aMask) = visibleMask;
+            for (unsigned j = 0; j < _styles.size(); ++j)
+                if (visibleMask & (1u << j))
+                {
+                    if (_routedToPingPong[i])
+                    {
+                        _pingAny[j] = 1;
+                        ++_stats.pingPongDraws;
+                    }
+                    else
+                    {
+                        _aAny[j] = 1;
+                        ++_stats.aBufferDraws;
+                    }
+                }
+        }
+        ++_stats.drawnFeatures;
+        osg::StateSet& ss = *_featureState[i];
+        TransitionUniforms::applyFeature(ss, evaluator, fs);
+        const Feature& feature = *index.entries()[fs.entry].feature;
+        if (deformation)
+            deformation->applyFeature(
+                ss, LandmarkDeformation::FeatureInput(feature, fs.bound, fs.staticInterest), view);
+    }
+}
+
+void TransitionRenderer::traversePass(osgUtil::CullVisitor& cv, Pass::Kind kind, int configuration,
+                                      osg::StateSet* style, osg::StateSet* pass)
+{
+    cv.pushStateSet(_common.get());
+    if (style) cv.pushStateSet(style);
+    cv.pushStateSet(pass);
+    _pass.kind = kind;
+    _pass.configuration = configuration;
+    ++_stats.configurationPasses;
+    _node.traverseChildren(cv);
+    _pass = Pass();
+    cv.popStateSet();
+    if (style) cv.popStateSet();
+    cv.popStateSet();
+}
+
+void TransitionRenderer::drawFeature(unsigned entry, osg::Node& node, osgUtil::CullVisitor& cv,
+                                     osg::Callback* callback)
+{
+    if (_pass.kind == Pass::UNFEATURED || entry >= _featureOfEntry.size() || _featureOfEntry[entry] < 0)
+        return;
+    const unsigned i = unsigned(_featureOfEntry[entry]);
+    const Decision& d = _decisions[i];
+    bool draw = false;
+    Draw::Kind kind = Draw::SHARED;
+    const unsigned bit = _pass.configuration >= 0 ? 1u << unsigned(_pass.configuration) : 0u;
+    switch (_pass.kind)
+    {
+    case Pass::SHARED:
+        draw = d.shared == _pass.configuration;
+        break;
+    case Pass::DEPTH_ONLY:
+        draw = d.depthOnly;
+        kind = Draw::DEPTH_ONLY;
+        break;
+    case Pass::A_BUFFER:
+        draw = (d.aMask & bit) != 0;
+        kind = Draw::A_BUFFER;
+        break;
+    case Pass::PING_PONG:
+        draw = (d.pingMask & bit) != 0;
+        kind = Draw::PING_PONG;
+        break;
+    default:
+        break;
+    }
+    if (!draw)
+    {
+        visitNested(entry, cv);
+        return;
+    }
+    if (_recordDraws)
+    {
+        Draw rec;
+        rec.featureId = _node.getFeatureIndex().entries()[entry].feature->getId();
+        rec.configuration = kind == Draw::DEPTH_ONLY ? -1 : _pass.configuration;
+        rec.kind = kind;
+        _draws.push_back(rec);
+    }
+    cv.pushStateSet(_featureState[i].get());
+    if (callback)
+        callback->traverse(&node, &cv);
+    else if (osg::Drawable* drawable = node.asDrawable())
+        cv.apply(*drawable);
+    cv.popStateSet();
+}
+
+void TransitionRenderer::visitNested(unsigned entry, osgUtil::CullVisitor& cv)
+{
+    for (unsigned child : _nested[entry])
+    {
+        // Walk the path from this feature's node to the nested one, applying the transforms and
+        // state sets between them as the cull traversal would.
+        const osg::NodePath& outer = _paths[entry];
+        const osg::NodePath& inner = _paths[child];
+        if (inner.size() <= outer.size()) continue;
+        unsigned pushedMatrices = 0, pushedStates = 0;
+        for (std::size_t k = outer.size(); k + 1 < inner.size(); ++k)
+        {
+            osg::Node* n = inner[k];
+            if (osg::Transform* t = n->asTransform())
+            {
+                osg::ref_ptr<osg::RefMatrix> m = new osg::RefMatrix(*cv.getModelViewMatrix());
+                t->computeLocalToWorldMatrix(*m, &cv);
+                cv.pushModelViewMatrix(m.get(), t->getReferenceFrame());
+                ++pushedMatrices;
+            }
+            if (osg::StateSet* ss = n->getStateSet())
+            {
+                cv.pushStateSet(ss);
+                ++pushedStates;
+            }
+        }
+        inner.back()->accept(cv);
+        for (unsigned k = 0; k < pushedStates; ++k)
+            cv.popStateSet();
+        for (unsigned k = 0; k < pushedMatrices; ++k)
+            cv.popModelViewMatrix();
+    }
+}
+
+void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator& evaluator)
+{
+    _stats = Statistics();
+    _draws.clear();
+    const osg::Matrixd mv = *cv.getModelViewMatrix();
+    _viewToSceneMatrix = osg::Matrixd::inverse(mv);
+    decide(evaluator);
+
+    const osg::Viewport* vp = cv.getViewport();
+    const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;
+    osg::BoundingSphere bs = _node.getBound();
+    osg::BoundingSphere viewSphere(bs.center() * mv,
+                                   bs.radius() * float(mv.getScale().length() / std::sqrt(3.0)));
+    double zNear = 1.0, zFar = 1000.0;
+    bool ortho = false;
+    const osg::Matrixd projection = fitDepthRange(*cv.getProjectionMatrix(), viewSphere, zNear, zFar, ortho);
+    _sceneToView->set(osg::Matrixf(mv));
+    _viewToScene->set(osg::Matrixf(_viewToSceneMatrix));
+
+    auto setUp = [&](osg::Camera* c)
+    {
+        c->setViewMatrix(mv);
+        c->setProjectionMatrix(projection);
+        c->accept(cv);
+    };
+    _gbuffer->setSize(w, h);
+    setUp(_gbuffer->getCamera());
+    _stats.aBuffer = std::find(_aAny.begin(), _aAny.end(), 1) != _aAny.end();
+    if (_stats.aBuffer)
+    {
+        _aBuffer->setSize(w, h);
+        setUp(_aBuffer->getCamera());
+    }
+    _stats.pingPongBuffer = std::find(_pingAny.begin(), _pingAny.end(), 1) != _pingAny.end();
+    if (_stats.pingPongBuffer)
+    {
+        _pingPong->setSize(w, h);
+        setUp(_pingPong->getCamera(0));
+        setUp(_pingPong->getCamera(1));
+    }
+    _stats.unsharp = _settings.unsharpMasking && _maxUnsharpSigma > 0.0f;
+    if (_stats.unsharp)
+    {
+        _unsharp->setSize(w, h);
+        _unsharp->setSigma(_maxUnsharpSigma);
+        _unsharp->setDepthRange(float(zNear), float(zFar), ortho);
+        _unsharp->getCamera(0)->accept(cv);
+        _unsharp->getCamera(1)->accept(cv);
+    }
+    _compositing->setInputs(_stats.aBuffer, _stats.pingPongBuffer, _settings.edges, _stats.unsharp);
+    _compositing->setDepthRange(float(zNear), float(zFar), ortho);
+    _compositing->getNode()->accept(cv);
+}
+
+TransitionRenderer::Memory TransitionRenderer::memory(int width, int height, unsigned samples,
+                                                      unsigned passes, bool pingPong, bool unsharp)
+{
+    Memory m;
+    m.aBufferBytes = double(ABufferMemory::of(width, height, int(samples), int(passes)).bytes());
+    m.pingPongBytes = pingPong ? PingPongBuffer::memoryBytes(width, height) : 0.0;
+    m.geometryBufferBytes = GeometryBuffer::memoryBytes(width, height);
+    m.unsharpBytes = unsharp ? DepthUnsharpMask::memoryBytes(width, height) : 0.0;
+    m.paperBytes = double(width) * height * (2.0 * samples + 7.0) * 4.0;
+    return m;
+}
+
+void TransitionRenderer::releaseGLObjects(osg::State* state) const
+{
+    _gbuffer->getCamera()->releaseGLObjects(state);
+    _aBuffer->getCamera()->releaseGLObjects(state);
+    _pingPong->getCamera(0)->releaseGLObjects(state);
+    _pingPong->getCamera(1)->releaseGLObjects(state);
+    _unsharp->getCamera(0)->releaseGLObjects(state);
+    _unsharp->getCamera(1)->releaseGLObjects(state);
+    const_cast<ImageCompositing*>(_compositing.get())->getNode()->releaseGLObjects(state);
+    for (const auto& p : _programs)
+        p.second->releaseGLObjects(state);
+}
+
+void TransitionRenderer::resizeGLObjectBuffers(unsigned maxSize)
+{
+    _gbuffer->getCamera()->resizeGLObjectBuffers(maxSize);
+    _aBuffer->getCamera()->resizeGLObjectBuffers(maxSize);
+    _pingPong->getCamera(0)->resizeGLObjectBuffers(maxSize);
+    _pingPong->getCamera(1)->resizeGLObjectBuffers(maxSize);
+    _unsharp->getCamera(0)->resizeGLObjectBuffers(maxSize);
+    _unsharp->getCamera(1)->resizeGLObjectBuffers(maxSize);
+    _compositing->getNode()->resizeGLObjectBuffers(maxSize);
+    for (const auto& p : _programs)
+        p.second->resizeGLObjectBuffers(maxSize);
+}
+
+} // namespace osgLoA

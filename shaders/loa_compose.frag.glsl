@@ -1,0 +1,146 @@
+#version 450 compatibility
+// Image compositing of the LoA node (paper 004 §3.2.4, Algorithm 2; docs/rendering.md): per
+// pixel the fragments of the stencil-routed A-buffer, the ping-pong buffer's fragment and the
+// G-buffer's opaque colour are sorted by depth, fragments of one surface merged, and blended back
+// to front; then edge enhancement from G-buffer discontinuities (Nienhaus & Doellner 2003) and
+// unsharp masking of the depth buffer (Luft et al. 2006). The output is premultiplied and drawn
+// over the framebuffer (ONE, ONE_MINUS_SRC_ALPHA): the background is what the camera drew before.
+#pragma import_defines(LOA_MAX_FRAGMENTS)
+#ifndef LOA_MAX_FRAGMENTS
+#define LOA_MAX_FRAGMENTS 64
+#endif
+in vec2 loa_screenCoord;
+
+uniform sampler2D loa_gColor;  // premultiplied colour of features drawn in the shared pass
+uniform sampler2D loa_gNormal; // view normal * 0.5 + 0.5, unsharp strength
+uniform sampler2D loa_gId;     // feature id, drawn flag
+uniform sampler2D loa_gEdge;   // edge colour, strength
+uniform sampler2D loa_gDepth;  // front depth
+uniform sampler2D loa_unsharpBlur;  // blurred (alpha * linear depth, alpha)
+uniform sampler2D loa_pingColor0;
+uniform sampler2D loa_pingDepth0;
+uniform sampler2D loa_pingColor1;
+uniform sampler2D loa_pingDepth1;
+uniform bool loa_useABuffer;
+uniform bool loa_usePingPong;
+uniform bool loa_useEdges;
+uniform bool loa_useUnsharp;
+uniform vec2 loa_depthRange;   // near, far
+uniform bool loa_orthographic = false;
+uniform float loa_mergeEpsilon = 2.0e-6; // window depth: fragments this close are one surface
+uniform vec4 loa_edgeThresholds = vec4(0.02, 0.08, 0.25, 0.6); // depth lo/hi (relative), normal lo/hi
+uniform float loa_unsharpScale = 4.0;    // relative depth difference -> darkening
+
+int loa_abufferFetch(ivec2 pixel, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
+                     int count);
+vec4 loa_compositeLayers(int count, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
+                         float mergeEpsilon);
+
+layout(location = 0) out vec4 loa_outColor;
+
+float loa_linearDepth(float d)
+{
+    float n = loa_depthRange.x, f = loa_depthRange.y;
+    if (loa_orthographic)
+        return n + d * (f - n);
+    return n * f / (f - d * (f - n));
+}
+
+// A function of depth that is linear in screen space on planes: 1 / linear depth in perspective,
+// linear depth in orthographic projections. Its Laplacian is zero on every plane.
+float loa_planarDepth(ivec2 p)
+{
+    float d = loa_linearDepth(texelFetch(loa_gDepth, p, 0).r);
+    return loa_orthographic ? d : 1.0 / d;
+}
+
+bool loa_drawn(ivec2 p)
+{
+    return texelFetch(loa_gId, p, 0).a > 0.5;
+}
+
+// Edge measure in [0, 1] of the front surface at p (0 where no surface is drawn).
+float loa_edge(ivec2 p)
+{
+    ivec2 size = textureSize(loa_gDepth, 0);
+    if (!loa_drawn(p))
+        return 0.0;
+    float d = loa_planarDepth(p);
+    vec3 n = texelFetch(loa_gNormal, p, 0).xyz * 2.0 - 1.0;
+    vec3 id = texelFetch(loa_gId, p, 0).rgb;
+    const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    float laplace = 0.0, normalEdge = 0.0, idEdge = 0.0;
+    for (int k = 0; k < 4; ++k)
+    {
+        ivec2 q = clamp(p + offsets[k], ivec2(0), size - 1);
+        if (!loa_drawn(q))
+        {
+            idEdge = 1.0; // silhouette against the background
+            laplace += d;
+            continue;
+        }
+        float dq = loa_planarDepth(q);
+        laplace += dq;
+        vec3 nq = texelFetch(loa_gNormal, q, 0).xyz * 2.0 - 1.0;
+        normalEdge = max(normalEdge, 1.0 - dot(n, nq));
+        if (any(greaterThan(abs(texelFetch(loa_gId, q, 0).rgb - id), vec3(0.5 / 255.0))))
+            idEdge = 1.0;
+    }
+    // Second-order depth discontinuity, relative: zero on planes whatever their slope.
+    float depthEdge = smoothstep(loa_edgeThresholds.x, loa_edgeThresholds.y, abs(4.0 * d - laplace) / d);
+    normalEdge = smoothstep(loa_edgeThresholds.z, loa_edgeThresholds.w, normalEdge);
+    return max(max(depthEdge, normalEdge), idEdge);
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 colors[LOA_MAX_FRAGMENTS];
+    float depths[LOA_MAX_FRAGMENTS];
+    int count = 0;
+    vec4 opaque = texelFetch(loa_gColor, p, 0);
+    if (opaque.a > 0.0)
+    {
+        colors[count] = vec4(opaque.rgb / opaque.a, opaque.a);
+        depths[count] = texelFetch(loa_gDepth, p, 0).r;
+        ++count;
+    }
+    if (loa_usePingPong)
+    {
+        // Algorithm 2 line 11: the two targets hold the same surface in successive styles.
+        vec4 c0 = texelFetch(loa_pingColor0, p, 0), c1 = texelFetch(loa_pingColor1, p, 0);
+        float a = c0.a + c1.a;
+        if (a > 0.0)
+        {
+            float d0 = c0.a > 0.0 ? texelFetch(loa_pingDepth0, p, 0).r : 1.0;
+            float d1 = c1.a > 0.0 ? texelFetch(loa_pingDepth1, p, 0).r : 1.0;
+            colors[count] = vec4((c0.rgb * c0.a + c1.rgb * c1.a) / a, min(a, 1.0));
+            depths[count] = min(d0, d1);
+            ++count;
+        }
+    }
+    if (loa_useABuffer)
+        count = loa_abufferFetch(p, colors, depths, count);
+    if (count == 0)
+        discard;
+    vec4 result = loa_compositeLayers(count, colors, depths, loa_mergeEpsilon);
+    if (loa_useEdges && loa_drawn(p))
+    {
+        vec4 edge = texelFetch(loa_gEdge, p, 0);
+        float e = loa_edge(p) * edge.a;
+        if (e > 0.0)
+            result.rgb = mix(result.rgb, edge.rgb / max(edge.a, 1.0e-3) * result.a, clamp(e, 0.0, 1.0));
+    }
+    if (loa_useUnsharp && loa_drawn(p))
+    {
+        float strength = texelFetch(loa_gNormal, p, 0).a;
+        vec2 blur = texelFetch(loa_unsharpBlur, p, 0).rg;
+        if (strength > 0.0 && blur.y > 0.0)
+        {
+            float d = loa_linearDepth(texelFetch(loa_gDepth, p, 0).r);
+            float delta = (blur.x / blur.y - d) / d; // < 0: the neighbourhood is in front
+            result.rgb *= clamp(1.0 + loa_unsharpScale * strength * min(delta, 0.0), 0.0, 1.0);
+        }
+    }
+    loa_outColor = result;
+}

@@ -1,0 +1,125 @@
+#version 450 compatibility
+// The fragment stage's main of every feature draw (docs/rendering.md). The renderer inserts one
+// of these defines after the #version line:
+//   LOA_PASS_GBUFFER_COLOR  front-surface G-buffer, the feature drawn in its one style (shared pass)
+//   LOA_PASS_GBUFFER_DEPTH  front-surface G-buffer, depth/normal/id where the feature is opaque
+//   LOA_PASS_ABUFFER        one configuration's draw into the stencil-routed A-buffer
+//   LOA_PASS_PINGPONG       one configuration's opaque draw into a ping-pong target
+// and LOA_UNFEATURED with LOA_PASS_GBUFFER_COLOR for geometry outside every feature (weight 1).
+in vec3 loa_scenePosition;
+in vec3 loa_viewPosition;
+in vec3 loa_viewNormal;
+in vec2 loa_texCoord;
+in vec4 loa_color;
+
+uniform int loa_configuration;       // the configuration this draw belongs to
+uniform int loa_numConfigurations;
+uniform int loa_visibleStyles;       // bit j: configuration j's style draws (is not hidden)
+uniform vec4 loa_styleEdge[16];      // edge colour (rgb) and strength (a) of configuration j's style
+uniform float loa_styleUnsharp[16];  // unsharp-masking strength of configuration j's style
+uniform uint loa_featureId;
+uniform sampler2D loa_baseTexture;
+uniform sampler2D loa_frontDepth;    // the G-buffer's depth (A-buffer and ping-pong passes)
+uniform float loa_depthEpsilon = 2.0e-6; // window-depth tolerance of "at the front surface"
+
+float loa_blendWeight(int j, vec3 p);
+
+#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_ABUFFER) || defined(LOA_PASS_PINGPONG)
+vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color);
+#endif
+#ifdef LOA_PASS_ABUFFER
+void loa_abufferWrite(vec4 straightAlphaColor);
+#endif
+
+#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH)
+layout(location = 0) out vec4 loa_outColor;  // premultiplied colour of shared draws
+layout(location = 1) out vec4 loa_outNormal; // view normal * 0.5 + 0.5, unsharp strength
+layout(location = 2) out vec4 loa_outId;     // feature id (24 bits), drawn flag
+layout(location = 3) out vec4 loa_outEdge;   // edge colour x strength, strength
+#endif
+#ifdef LOA_PASS_PINGPONG
+layout(location = 0) out vec4 loa_outColor; // straight colour, alpha = blend weight
+#endif
+
+vec3 loa_facingNormal()
+{
+    vec3 n = normalize(loa_viewNormal);
+    return gl_FrontFacing ? n : -n;
+}
+
+// The opacity of the model's own material: texture alpha times vertex alpha.
+float loa_materialOpacity()
+{
+    float a = loa_color.a;
+    if (textureSize(loa_baseTexture, 0).x > 0)
+        a *= texture(loa_baseTexture, loa_texCoord).a;
+    return a;
+}
+
+void loa_discardBehindFront()
+{
+    float front = texelFetch(loa_frontDepth, ivec2(gl_FragCoord.xy), 0).r;
+    if (gl_FragCoord.z > front + loa_depthEpsilon)
+        discard;
+}
+
+#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH)
+// The edge colour weighted by its strength, and the strength: sums of these over styles give the
+// strength-weighted mean colour (rgb / a) and the blended strength (a).
+vec4 loa_premultipliedEdge(int j)
+{
+    return vec4(loa_styleEdge[j].rgb * loa_styleEdge[j].a, loa_styleEdge[j].a);
+}
+
+void loa_writeGeometry(vec4 edge, float unsharp)
+{
+    loa_outNormal = vec4(loa_facingNormal() * 0.5 + 0.5, clamp(unsharp, 0.0, 1.0));
+    uint id = loa_featureId & 0xffffffu;
+    loa_outId = vec4(float(id & 0xffu), float((id >> 8) & 0xffu), float((id >> 16) & 0xffu), 255.0) / 255.0;
+    loa_outEdge = edge;
+}
+#endif
+
+void main()
+{
+#if defined(LOA_PASS_GBUFFER_COLOR)
+#ifndef LOA_UNFEATURED
+    // The feature's one contributing configuration: its weight is 1 wherever it is non-zero.
+    if (loa_blendWeight(loa_configuration, loa_scenePosition) <= 0.0)
+        discard;
+#endif
+    vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
+    loa_outColor = vec4(c.rgb, 1.0);
+    loa_writeGeometry(loa_premultipliedEdge(loa_configuration), loa_styleUnsharp[loa_configuration]);
+#elif defined(LOA_PASS_GBUFFER_DEPTH)
+    // Front surface only where the feature is opaque: its visible styles' weights sum to 1.
+    float visible = 0.0, unsharp = 0.0;
+    vec4 edge = vec4(0.0);
+    for (int j = 0; j < loa_numConfigurations; ++j)
+    {
+        if ((loa_visibleStyles & (1 << j)) == 0)
+            continue;
+        float w = loa_blendWeight(j, loa_scenePosition);
+        visible += w;
+        edge += w * loa_premultipliedEdge(j);
+        unsharp += w * loa_styleUnsharp[j];
+    }
+    if (visible < 0.999 || loa_materialOpacity() < 0.999)
+        discard;
+    loa_outColor = vec4(0.0);
+    loa_writeGeometry(edge, unsharp);
+#else
+    float w = loa_blendWeight(loa_configuration, loa_scenePosition);
+    if (w <= 0.0)
+        discard;
+    loa_discardBehindFront();
+    vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
+#ifdef LOA_PASS_ABUFFER
+    loa_abufferWrite(vec4(c.rgb, c.a * w));
+#else
+    if (c.a < 0.5)
+        discard; // opaque draws: alpha-tested
+    loa_outColor = vec4(c.rgb, w);
+#endif
+#endif
+}

@@ -1,0 +1,30 @@
+#version 450 compatibility
+// The vertex stage of every program that draws a feature in a graphic style (docs/rendering.md):
+// model -> LoA-node ("scene") coordinates, landmark deformation (loa_landmark.vert.glsl), and
+// back to view and clip space. The fixed-function matrices are used so that the same program runs
+// in the stock osgviewer and in osgLoA's offscreen renderer.
+uniform mat4 loa_viewToScene; // view -> LoA node local coordinates
+uniform mat4 loa_sceneToView; // its inverse
+
+vec3 loa_deformVertex(vec3 scenePosition);
+vec3 loa_deformNormal(vec3 sceneNormal);
+
+out vec3 loa_scenePosition; // before deformation: where the interest is measured
+out vec3 loa_viewPosition;
+out vec3 loa_viewNormal;
+out vec2 loa_texCoord;
+out vec4 loa_color;
+
+void main()
+{
+    vec4 view = gl_ModelViewMatrix * gl_Vertex;
+    vec4 scene = loa_viewToScene * view;
+    loa_scenePosition = scene.xyz / scene.w;
+    vec4 deformed = loa_sceneToView * vec4(loa_deformVertex(loa_scenePosition), 1.0);
+    loa_viewPosition = deformed.xyz / deformed.w;
+    vec3 sceneNormal = mat3(loa_viewToScene) * (gl_NormalMatrix * gl_Normal);
+    loa_viewNormal = mat3(loa_sceneToView) * loa_deformNormal(sceneNormal);
+    loa_texCoord = gl_MultiTexCoord0.xy;
+    loa_color = gl_Color;
+    gl_Position = gl_ProjectionMatrix * deformed;
+}
