@@ -6,7 +6,7 @@
 // osgLoA::ColorQuantization; the two must compute the same function. Pre-filtered texture
 // mipmaps (the texture-filtering work) replace this quantization when they land.
 uniform sampler2D loa_baseTexture;
-bool loa_hasTexture() { return textureSize(loa_baseTexture, 0).x > 0; } // a texture is bound to unit 0
+uniform bool loa_hasTexture; // set per feature by the renderer: its geometry has a texture on unit 0
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform int loa_abstract_levels = 5;
 uniform float loa_abstract_chromaStep = 0.05;
@@ -84,7 +84,7 @@ vec3 loa_abstract_quantize(vec3 srgb)
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
     vec4 base = color;
-    if (loa_hasTexture())
+    if (loa_hasTexture)
         base *= texture(loa_baseTexture, texCoord);
     float ambient = loa_abstract_ambient;
     float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);

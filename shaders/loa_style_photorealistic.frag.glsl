@@ -8,7 +8,7 @@
 // colour). For a material with colour mode OFF on a geometry with a colour array, set
 // loa_photorealistic_materialDiffuse to use gl_FrontMaterial.diffuse instead.
 uniform sampler2D loa_baseTexture;
-bool loa_hasTexture() { return textureSize(loa_baseTexture, 0).x > 0; } // a texture is bound to unit 0
+uniform bool loa_hasTexture; // set per feature by the renderer: its geometry has a texture on unit 0
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform float loa_photorealistic_ambient = 0.35;
 uniform bool loa_photorealistic_materialDiffuse = false;
@@ -16,7 +16,7 @@ uniform bool loa_photorealistic_materialDiffuse = false;
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
     vec4 base = loa_photorealistic_materialDiffuse ? gl_FrontMaterial.diffuse : color;
-    if (loa_hasTexture())
+    if (loa_hasTexture)
         base *= texture(loa_baseTexture, texCoord);
     float ambient = loa_photorealistic_ambient;
     float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);

@@ -6,7 +6,9 @@
 #include <osg/Notify>
 
 #include <algorithm>
+#include <osgLoA/util/StateSetVisitor>
 #include <osgUtil/CullVisitor>
+#include <osgUtil/GLObjectsVisitor>
 
 namespace osgLoA
 {
@@ -229,8 +231,12 @@ void LoANode::traverse(osg::NodeVisitor& nv)
     // Generic visitors (program checks, GL object compilation before the first frame) bind the
     // scenario and reach the renderer's passes, so that their programs are compiled and checked
     // up front rather than in the middle of the first frame's draw.
-    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR && _renderingEnabled && _scenario.valid() &&
-        !_inBind)
+    // Only those: other generic visitors (osgconv's optimizer, writers) must find the node as
+    // it was read, without the state binding adds.
+    const bool compiling =
+        nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR &&
+        (dynamic_cast<osgUtil::GLObjectsVisitor*>(&nv) || dynamic_cast<StateSetVisitor*>(&nv));
+    if (compiling && _renderingEnabled && _scenario.valid() && !_inBind)
     {
         {
             std::lock_guard<std::mutex> lock(_mutex);

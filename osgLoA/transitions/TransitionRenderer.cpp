@@ -398,7 +398,18 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         uniform(*ss, "loa_featureType", osg::Uniform::INT)->set(int(e.feature->getType()));
         uniform(*ss, "loa_featureId", osg::Uniform::UNSIGNED_INT)->set(e.feature->getId());
         _featureState[i] = ss;
-        if (osg::Node* node = e.node.get()) _opaqueMaterial[i] = opaqueMaterial(*node) ? 1 : 0;
+        if (osg::Node* node = e.node.get())
+        {
+            _opaqueMaterial[i] = opaqueMaterial(*node) ? 1 : 0;
+            bool textured = false;
+            StateSetVisitor tv(
+                [&](osg::StateSet& tss) {
+                    textured =
+                        textured || tss.getTextureAttribute(0, osg::StateAttribute::TEXTURE) != nullptr;
+                });
+            node->accept(tv);
+            uniform(*ss, "loa_hasTexture", osg::Uniform::BOOL)->set(textured);
+        }
         const auto& subs = _settings.pingPongSubTypes;
         _routedToPingPong[i] = _settings.pingPong && e.feature->getType() == FeatureType::Green &&
                                std::find(subs.begin(), subs.end(), e.feature->getSubType()) != subs.end();
