@@ -1,6 +1,8 @@
 // DistanceField: grid sizing, seed rasterization, the exact EDT, jump flooding on the CPU and as
 // OSG render-to-texture passes (shaders/loa_jfa_pass.{vert,frag}.glsl).
 #include <osgLoA/interest/DistanceField>
+
+#include "../compositing/RenderTarget.h"
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 
@@ -797,18 +799,8 @@ osg::ref_ptr<osg::Texture2D> packedTexture(int packs, int h)
 /** One triangle covering the viewport, in clip space (loa_jfa_pass.vert.glsl passes it on). */
 osg::ref_ptr<osg::Geode> fullScreenTriangle()
 {
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back(osg::Vec3(-1.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(3.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(-1.0f, 3.0f, 0.0f));
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
-    g->setUseDisplayList(false);
-    g->setUseVertexBufferObjects(true);
-    g->setCullingActive(false);
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
+    geode->addDrawable(detail::createFullScreenTriangle().get());
     geode->setCullingActive(false);
     return geode;
 }
