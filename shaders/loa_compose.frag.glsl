@@ -5,7 +5,7 @@
 // to front; then edge enhancement from G-buffer discontinuities (Nienhaus & Doellner 2003) and
 // unsharp masking of the depth buffer (Luft et al. 2006). The output is premultiplied and drawn
 // over the framebuffer (ONE, ONE_MINUS_SRC_ALPHA): the background is what the camera drew before.
-#pragma import_defines(LOA_MAX_FRAGMENTS)
+#pragma import_defines(LOA_MAX_FRAGMENTS, LOA_USE_ABUFFER)
 #ifndef LOA_MAX_FRAGMENTS
 #define LOA_MAX_FRAGMENTS 64
 #endif
@@ -16,12 +16,12 @@ uniform sampler2D loa_gNormal; // view normal * 0.5 + 0.5, unsharp strength
 uniform sampler2D loa_gId;     // feature id, drawn flag
 uniform sampler2D loa_gEdge;   // edge colour, strength
 uniform sampler2D loa_gDepth;  // front depth
-uniform sampler2D loa_unsharpBlur;  // blurred (alpha * linear depth, alpha)
+uniform sampler2D loa_unsharpBlur;  // blurred (alpha * linear depth, alpha), reduced resolution
+uniform vec2 loa_unsharpScaleToTexture = vec2(1.0); // window coordinates -> its texture coordinates
 uniform sampler2D loa_pingColor0;
 uniform sampler2D loa_pingDepth0;
 uniform sampler2D loa_pingColor1;
 uniform sampler2D loa_pingDepth1;
-uniform bool loa_useABuffer;
 uniform bool loa_usePingPong;
 uniform bool loa_useEdges;
 uniform bool loa_useUnsharp;
@@ -31,10 +31,12 @@ uniform float loa_mergeEpsilon = 2.0e-6; // window depth: fragments this close a
 uniform vec4 loa_edgeThresholds = vec4(0.02, 0.08, 0.25, 0.6); // depth lo/hi (relative), normal lo/hi
 uniform float loa_unsharpScale = 4.0;    // relative depth difference -> darkening
 
+#ifdef LOA_USE_ABUFFER
 int loa_abufferFetch(ivec2 pixel, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
                      int count);
 vec4 loa_compositeLayers(int count, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
                          float mergeEpsilon);
+#endif
 
 layout(location = 0) out vec4 loa_outColor;
 
@@ -92,49 +94,103 @@ float loa_edge(ivec2 p)
     return max(max(depthEdge, normalEdge), idEdge);
 }
 
-void main()
+// The opaque colour of the shared pass at p as a straight-alpha fragment, if any.
+bool loa_opaqueFragment(ivec2 p, out vec4 color, out float depth)
 {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 c = texelFetch(loa_gColor, p, 0);
+    color = c.a > 0.0 ? vec4(c.rgb / c.a, c.a) : vec4(0.0);
+    depth = c.a > 0.0 ? texelFetch(loa_gDepth, p, 0).r : 1.0;
+    return c.a > 0.0;
+}
+
+// Algorithm 2 line 11: the two ping-pong targets hold the same surface in successive styles.
+bool loa_pingPongFragment(ivec2 p, out vec4 color, out float depth)
+{
+    vec4 c0 = texelFetch(loa_pingColor0, p, 0), c1 = texelFetch(loa_pingColor1, p, 0);
+    float a = c0.a + c1.a;
+    float d0 = c0.a > 0.0 ? texelFetch(loa_pingDepth0, p, 0).r : 1.0;
+    float d1 = c1.a > 0.0 ? texelFetch(loa_pingDepth1, p, 0).r : 1.0;
+    color = a > 0.0 ? vec4((c0.rgb * c0.a + c1.rgb * c1.a) / a, min(a, 1.0)) : vec4(0.0);
+    depth = min(d0, d1);
+    return a > 0.0;
+}
+
+// Without the A-buffer, at most two fragments: the operations of loa_compositeLayers (stable
+// sort by depth, merge of one surface, back-to-front blend) on scalars, without the local arrays
+// (which llvmpipe keeps in memory and reads and writes lane by lane).
+vec4 loa_composeWithoutABuffer(ivec2 p)
+{
+    vec4 front, back = vec4(0.0);
+    float frontDepth, backDepth = 1.0;
+    bool any = loa_opaqueFragment(p, front, frontDepth);
+    vec4 c;
+    float d;
+    if (loa_usePingPong && loa_pingPongFragment(p, c, d))
+    {
+        if (!any)
+        {
+            front = c;
+            frontDepth = d;
+        }
+        else
+        {
+            bool nearer = d < frontDepth;
+            back = nearer ? front : c;
+            backDepth = nearer ? frontDepth : d;
+            front = nearer ? c : front;
+            frontDepth = nearer ? d : frontDepth;
+            if (loa_mergeEpsilon >= 0.0 && backDepth - frontDepth <= loa_mergeEpsilon)
+            {
+                float sumA = front.a + back.a;
+                front = vec4((front.rgb * front.a + back.rgb * back.a) / sumA, min(1.0, sumA));
+                back = vec4(0.0);
+            }
+        }
+        any = true;
+    }
+    if (!any)
+        discard;
+    return vec4(mix(back.rgb * back.a, front.rgb, front.a), mix(back.a, 1.0, front.a));
+}
+
+#ifdef LOA_USE_ABUFFER
+// All fragments of the pixel (G-buffer, ping-pong, A-buffer), sorted, merged and blended.
+vec4 loa_composeWithABuffer(ivec2 p)
+{
     vec4 colors[LOA_MAX_FRAGMENTS];
     float depths[LOA_MAX_FRAGMENTS];
     int count = 0;
-    vec4 opaque = texelFetch(loa_gColor, p, 0);
-    if (opaque.a > 0.0)
-    {
-        colors[count] = vec4(opaque.rgb / opaque.a, opaque.a);
-        depths[count] = texelFetch(loa_gDepth, p, 0).r;
+    if (loa_opaqueFragment(p, colors[count], depths[count]))
         ++count;
-    }
-    if (loa_usePingPong)
-    {
-        // Algorithm 2 line 11: the two targets hold the same surface in successive styles.
-        vec4 c0 = texelFetch(loa_pingColor0, p, 0), c1 = texelFetch(loa_pingColor1, p, 0);
-        float a = c0.a + c1.a;
-        if (a > 0.0)
-        {
-            float d0 = c0.a > 0.0 ? texelFetch(loa_pingDepth0, p, 0).r : 1.0;
-            float d1 = c1.a > 0.0 ? texelFetch(loa_pingDepth1, p, 0).r : 1.0;
-            colors[count] = vec4((c0.rgb * c0.a + c1.rgb * c1.a) / a, min(a, 1.0));
-            depths[count] = min(d0, d1);
-            ++count;
-        }
-    }
-    if (loa_useABuffer)
-        count = loa_abufferFetch(p, colors, depths, count);
+    if (loa_usePingPong && loa_pingPongFragment(p, colors[count], depths[count]))
+        ++count;
+    count = loa_abufferFetch(p, colors, depths, count);
     if (count == 0)
         discard;
-    vec4 result = loa_compositeLayers(count, colors, depths, loa_mergeEpsilon);
+    return loa_compositeLayers(count, colors, depths, loa_mergeEpsilon);
+}
+#endif
+
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+#ifdef LOA_USE_ABUFFER
+    vec4 result = loa_composeWithABuffer(p);
+#else
+    vec4 result = loa_composeWithoutABuffer(p);
+#endif
     if (loa_useEdges && loa_drawn(p))
     {
+        // Only pixels whose style asks for edges look at their neighbours.
         vec4 edge = texelFetch(loa_gEdge, p, 0);
-        float e = loa_edge(p) * edge.a;
+        float e = edge.a > 0.0 ? loa_edge(p) * edge.a : 0.0;
         if (e > 0.0)
             result.rgb = mix(result.rgb, edge.rgb / max(edge.a, 1.0e-3) * result.a, clamp(e, 0.0, 1.0));
     }
     if (loa_useUnsharp && loa_drawn(p))
     {
         float strength = texelFetch(loa_gNormal, p, 0).a;
-        vec2 blur = texelFetch(loa_unsharpBlur, p, 0).rg;
+        vec2 blur = texture(loa_unsharpBlur, gl_FragCoord.xy / loa_unsharpScaleToTexture).rg;
         if (strength > 0.0 && blur.y > 0.0)
         {
             float d = loa_linearDepth(texelFetch(loa_gDepth, p, 0).r);

@@ -6,7 +6,7 @@
 // osgLoA::ColorQuantization; the two must compute the same function. Pre-filtered texture
 // mipmaps (the texture-filtering work) replace this quantization when they land.
 uniform sampler2D loa_baseTexture;
-uniform bool loa_hasTexture; // set per feature by the renderer: its geometry has a texture on unit 0
+uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform int loa_abstract_levels = 5;
 uniform float loa_abstract_chromaStep = 0.05;

@@ -8,7 +8,7 @@
 // colour). For a material with colour mode OFF on a geometry with a colour array, set
 // loa_photorealistic_materialDiffuse to use gl_FrontMaterial.diffuse instead.
 uniform sampler2D loa_baseTexture;
-uniform bool loa_hasTexture; // set per feature by the renderer: its geometry has a texture on unit 0
+uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform float loa_photorealistic_ambient = 0.35;
 uniform bool loa_photorealistic_materialDiffuse = false;

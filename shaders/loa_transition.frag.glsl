@@ -4,6 +4,17 @@
 // coordinates, Z up. The CPU twin is osgLoA::TransitionConfiguration / ScenarioEvaluator; the
 // uniforms are filled by osgLoA::TransitionUniforms.
 //
+// Specialization (osgLoA::TransitionUniforms::applyScenario sets these defines on the LoA node):
+//   LOA_INTEREST_GROUPS  number of distinct fragment-mode interests (0-4): each is evaluated once
+//                        per fragment and shared by its configurations; absent: one evaluation
+//                        per configuration (the generic path)
+//   LOA_METRICS          bit k: some fragment-mode configuration has metric kind k (the others'
+//                        code is compiled out)
+#pragma import_defines(LOA_INTEREST_GROUPS, LOA_METRICS)
+#ifndef LOA_METRICS
+#define LOA_METRICS 31
+#endif
+//
 // Scenario-wide uniforms (one value per LoA node):
 uniform vec3 loa_eye;                  // the eye
 uniform int loa_numConfigurations;     // <= 16
@@ -27,6 +38,8 @@ uniform float loa_featureInterest;     // static interest after the scenario's o
 uniform int loa_featureMatches;        // bit j: configuration j matches the feature
 uniform float loa_featureWeights[16];  // raw weights of object/group matches, from the CPU
 uniform float loa_featureInterests[16]; // their interests, from the CPU
+uniform int loa_interestGroup[16];     // fragment-mode configuration's interest group, else -1
+uniform int loa_groupConfiguration[4]; // a configuration of each interest group
 
 const float LOA_INFINITY = 1.0e30;
 
@@ -76,36 +89,42 @@ float loa_focusDistance(vec3 p)
     return length(d);
 }
 
-// The combined interest of configuration j at scene position p.
+// The combined interest of configuration j at scene position p. Metric kinds no fragment-mode
+// configuration has are compiled out (LOA_METRICS); the rest are accumulated in scalars.
 float loa_interest(int j, vec3 p)
 {
     int present = loa_mode[j].z;
-    float m[5];
-    float w[5];
-    vec3 d = p - loa_eye;
-    m[0] = loa_ramp(length(d), loa_rampA[j].x, loa_rampA[j].y);
-    float angle = degrees(atan(max(0.0, loa_eye.z - p.z), length(d.xy)));
-    m[1] = loa_ramp(angle, loa_rampA[j].z, loa_rampA[j].w);
-    m[2] = (present & 4) != 0 ? loa_ramp(loa_regionDistance(p), loa_rampB[j].x, loa_rampB[j].y) : 0.0;
-    m[3] = (present & 8) != 0 ? loa_ramp(loa_focusDistance(p), loa_rampB[j].z, loa_rampB[j].w) : 0.0;
-    m[4] = clamp(loa_featureInterest, 0.0, 1.0);
-    w[0] = loa_metricWeight[j].x;
-    w[1] = loa_metricWeight[j].y;
-    w[2] = loa_metricWeight[j].z;
-    w[3] = loa_metricWeight[j].w;
-    w[4] = loa_interestWeight[j];
     float sum = 0.0, weights = 0.0, lo = 1.0, hi = 0.0;
     bool any = false;
-    for (int k = 0; k < 5; ++k)
-    {
-        if ((present & (1 << k)) == 0)
-            continue;
-        sum += w[k] * m[k];
-        weights += w[k];
-        lo = min(lo, m[k]);
-        hi = max(hi, m[k]);
-        any = true;
+#define LOA_ACCUMULATE(k, value, weight)                                                          \
+    if ((present & (1 << k)) != 0)                                                              \
+    {                                                                                            \
+        float m_ = (value);                                                                      \
+        sum += (weight) * m_;                                                                    \
+        weights += (weight);                                                                     \
+        lo = min(lo, m_);                                                                        \
+        hi = max(hi, m_);                                                                        \
+        any = true;                                                                              \
     }
+    vec3 d = p - loa_eye;
+#if (LOA_METRICS & 1) != 0
+    LOA_ACCUMULATE(0, loa_ramp(length(d), loa_rampA[j].x, loa_rampA[j].y), loa_metricWeight[j].x)
+#endif
+#if (LOA_METRICS & 2) != 0
+    LOA_ACCUMULATE(1, loa_ramp(degrees(atan(max(0.0, loa_eye.z - p.z), length(d.xy))), loa_rampA[j].z,
+                               loa_rampA[j].w),
+                   loa_metricWeight[j].y)
+#endif
+#if (LOA_METRICS & 4) != 0
+    LOA_ACCUMULATE(2, loa_ramp(loa_regionDistance(p), loa_rampB[j].x, loa_rampB[j].y), loa_metricWeight[j].z)
+#endif
+#if (LOA_METRICS & 8) != 0
+    LOA_ACCUMULATE(3, loa_ramp(loa_focusDistance(p), loa_rampB[j].z, loa_rampB[j].w), loa_metricWeight[j].w)
+#endif
+#if (LOA_METRICS & 16) != 0
+    LOA_ACCUMULATE(4, clamp(loa_featureInterest, 0.0, 1.0), loa_interestWeight[j])
+#endif
+#undef LOA_ACCUMULATE
     if (!any)
         return 0.0;
     if (loa_mode[j].y == 1)
@@ -134,6 +153,36 @@ float loa_rawWeight(int j, vec3 p)
 
 // The blend weight of configuration j, normalized over the feature's matching configurations
 // (0 when none has weight here).
+#ifdef LOA_INTEREST_GROUPS
+// Specialized: each interest group's interest once, every raw weight once.
+float loa_blendWeight(int j, vec3 p)
+{
+    float g0 = 0.0, g1 = 0.0, g2 = 0.0, g3 = 0.0;
+#if LOA_INTEREST_GROUPS > 0
+    g0 = loa_interest(loa_groupConfiguration[0], p);
+#endif
+#if LOA_INTEREST_GROUPS > 1
+    g1 = loa_interest(loa_groupConfiguration[1], p);
+#endif
+#if LOA_INTEREST_GROUPS > 2
+    g2 = loa_interest(loa_groupConfiguration[2], p);
+#endif
+#if LOA_INTEREST_GROUPS > 3
+    g3 = loa_interest(loa_groupConfiguration[3], p);
+#endif
+    float sum = 0.0, wj = 0.0;
+    for (int k = 0; k < loa_numConfigurations; ++k)
+    {
+        int g = loa_interestGroup[k];
+        float interest = g == 0 ? g0 : (g == 1 ? g1 : (g == 2 ? g2 : g3));
+        float r = g < 0 ? loa_featureWeights[k] : loa_blendFunction(loa_fade[k], interest);
+        r = (loa_featureMatches & (1 << k)) != 0 ? r : 0.0;
+        sum += r;
+        wj = k == j ? r : wj;
+    }
+    return sum > 0.0 ? wj / sum : 0.0;
+}
+#else
 float loa_blendWeight(int j, vec3 p)
 {
     float sum = 0.0;
@@ -141,3 +190,4 @@ float loa_blendWeight(int j, vec3 p)
         sum += loa_rawWeight(k, p);
     return sum > 0.0 ? loa_rawWeight(j, p) / sum : 0.0;
 }
+#endif

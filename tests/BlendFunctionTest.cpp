@@ -368,3 +368,42 @@ TEST(BlendFunctionTest, MayContributeIsExactAtTheBounds)
     // Valid up to the top: [1, 1] contributes.
     EXPECT_TRUE(BlendFunction(0.5f, 0.5f, 1.0f, 1.0f).mayContribute(1.0f, 1.0f));
 }
+
+// contributesThroughout: hand-computed cases on the built-in distance levels, then against
+// brute-force sampling (never claims coverage where some interest in [lo, hi] has weight 0).
+TEST(BlendFunctionTest, ContributesThroughoutOnlyWhereTheWeightIsPositiveEverywhere)
+{
+    const BlendFunction low(0.0f, 0.0f, 0.25f, 0.4f), mid(0.25f, 0.4f, 0.6f, 0.75f),
+        high(0.6f, 0.75f, 1.0f, 1.0f);
+    // Low: a hard fade-in at 0 admits interest 0; its support ends (open) at 0.4.
+    EXPECT_TRUE(low.contributesThroughout(0.0f, 0.3f));
+    EXPECT_TRUE(low.contributesThroughout(0.0f, 0.3999f - 1e-3f));
+    EXPECT_FALSE(low.contributesThroughout(0.0f, 0.4f));
+    EXPECT_FALSE(low.contributesThroughout(0.0f, 0.39995f)); // inside the margin
+    // Mid: smooth fade-in at 0.25 is 0 at 0.25 itself.
+    EXPECT_FALSE(mid.contributesThroughout(0.25f, 0.5f));
+    EXPECT_TRUE(mid.contributesThroughout(0.26f, 0.74f));
+    EXPECT_FALSE(mid.contributesThroughout(0.3f, 0.8f));
+    // High: fade-out at 1 keeps the top of the axis.
+    EXPECT_TRUE(high.contributesThroughout(0.61f, 1.0f));
+    EXPECT_FALSE(high.contributesThroughout(0.5f, 1.0f));
+    // Degenerate intervals.
+    EXPECT_FALSE(mid.contributesThroughout(0.5f, 0.4f));
+    EXPECT_FALSE(mid.contributesThroughout(kNaN, 0.5f));
+    EXPECT_FALSE(mid.contributesThroughout(0.5f, kNaN));
+
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (const BlendFunction& f : {low, mid, high, BlendFunction(0.3f, 0.3f, 0.7f, 0.7f)})
+        for (int i = 0; i < 2000; ++i)
+        {
+            float lo = u(rng), hi = u(rng);
+            if (hi < lo) std::swap(lo, hi);
+            if (!f.contributesThroughout(lo, hi)) continue;
+            for (int k = 0; k <= 200; ++k)
+            {
+                const float x = lo + (hi - lo) * float(k) / 200.0f;
+                ASSERT_GT(f.weight(x), 0.0f) << "[" << lo << ", " << hi << "] at " << x;
+            }
+        }
+}

@@ -194,7 +194,10 @@ TEST(TransitionRendererGLTest, TwoHalfWeightsOfOneSurfaceGiveTheMeanOfTheStyles)
 
 namespace
 {
-void compareScenarioGolden(const std::string& scenario)
+/** Renders the demo city under a library scenario from a named camera at 320x240 and compares
+ *  with the golden; `stats` gets the LoA node's statistics of the frame. */
+void compareScenarioGolden(const std::string& scenario, const std::string& camera = "oblique",
+                           TransitionRenderer::Statistics* stats = nullptr)
 {
     OffscreenRenderer::Settings s;
     s.width = 320;
@@ -205,12 +208,13 @@ void compareScenarioGolden(const std::string& scenario)
     loa->setScenario(ScenarioLibrary::createBuiltin(scenario).get());
     loa->addChild(city.get());
     r->setSceneData(loa.get());
-    const CameraPose pose = CityCameras::compute("oblique", *city, 320.0 / 240.0);
+    const CameraPose pose = CityCameras::compute(camera, *city, 320.0 / 240.0);
     r->setPerspective(pose.fovy);
     r->setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
     osg::ref_ptr<osg::Image> actual = r->renderImage();
-    const std::string name = "scenario-" + scenario + "-oblique-320x240";
+    const std::string name = "scenario-" + scenario + "-" + camera + "-320x240";
     osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate(name + ".png", *actual);
+    if (stats) *stats = loa->getRenderer()->getStatistics();
     if (!golden) GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
     // The bars of DemoCityImageGLTest: a channel may differ by 16/255 before its pixel fails
     // (llvmpipe builds round filtering and blending differently); mean <= 1/255; at most 0.5%
@@ -228,6 +232,17 @@ TEST(TransitionRendererGLTest, DistanceScenarioMatchesGolden)
     compareScenarioGolden("distance");
 }
 
+// From the street, the view distance runs through all three levels: features in transition
+// take the A-buffer path (from the oblique camera everything is far: cartographic).
+TEST(TransitionRendererGLTest, DistanceScenarioFromTheStreetMatchesGolden)
+{
+    TransitionRenderer::Statistics st;
+    compareScenarioGolden("distance", "street", &st);
+    EXPECT_GT(st.depthOnlyDraws, 0u);
+    EXPECT_GT(st.aBufferDraws, st.depthOnlyDraws); // two or three styles per transitioning feature
+    EXPECT_GT(st.sharedDraws, 0u);
+}
+
 TEST(TransitionRendererGLTest, ViewAngleScenarioMatchesGolden)
 {
     compareScenarioGolden("view-angle");
@@ -241,4 +256,47 @@ TEST(TransitionRendererGLTest, RouteScenarioMatchesGolden)
 TEST(TransitionRendererGLTest, CircularRoiScenarioMatchesGolden)
 {
     compareScenarioGolden("circular-roi");
+}
+
+// The blend weights specialized to the scenario's interest groups (LOA_INTEREST_GROUPS,
+// LOA_METRICS, set by TransitionUniforms::applyScenario) are the generic path's: the same image
+// with the defines removed (2 groups of 2 configurations each and object-mode configurations in
+// the route scenario; view-angle has one group of two metrics).
+TEST(TransitionRendererGLTest, SpecializedBlendWeightsEqualTheGenericOnes)
+{
+    for (const char* scenario : {"view-angle", "route"})
+    {
+        OffscreenRenderer::Settings s;
+        s.width = 160;
+        s.height = 120;
+        osg::ref_ptr<OffscreenRenderer> r;
+        try
+        {
+            r = new OffscreenRenderer(s);
+        }
+        catch (const std::exception& e)
+        {
+            GTEST_SKIP() << "no EGL context: " << e.what();
+        }
+        osg::ref_ptr<osg::Group> city = CityGenerator(CityParameters()).generate();
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(ScenarioLibrary::createBuiltin(scenario).get());
+        loa->addChild(city.get());
+        r->setSceneData(loa.get());
+        const CameraPose pose = CityCameras::compute("oblique", *city, 160.0 / 120.0);
+        r->setPerspective(pose.fovy);
+        r->setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+        osg::ref_ptr<osg::Image> specialized = r->renderImage();
+        ASSERT_TRUE(loa->getStateSet() != nullptr);
+        const osg::StateSet::DefineList& defines = loa->getStateSet()->getDefineList();
+        ASSERT_EQ(defines.count("LOA_INTEREST_GROUPS"), 1u) << scenario;
+        EXPECT_EQ(defines.find("LOA_INTEREST_GROUPS")->second.first, "1") << scenario;
+        loa->getStateSet()->removeDefine("LOA_INTEREST_GROUPS");
+        loa->getStateSet()->removeDefine("LOA_METRICS");
+        osg::ref_ptr<osg::Image> generic = r->renderImage();
+        const auto cmp = ImageComparison::compare(*specialized, *generic, 1);
+        EXPECT_TRUE(cmp.sizesMatch);
+        EXPECT_LE(cmp.failingFraction, 0.0005) << scenario << ": " << cmp.summary();
+        EXPECT_LE(cmp.meanDifference, 0.05) << scenario << ": " << cmp.summary();
+    }
 }

@@ -4,6 +4,8 @@
 
 #include <osgLoA/render/OffscreenRenderer>
 
+#include <osg/Group>
+
 #include <string>
 #include <vector>
 
@@ -14,6 +16,15 @@ struct Row
     osgLoA::FrameTimes times;
     std::string errorMean, errorMax;
 };
+
+/** The demo city (default CityParameters), generated once per process. */
+osg::ref_ptr<osg::Node> demoCity();
+
+/** An offscreen renderer of `scene` at w x h with `samples` MSAA samples, from the 'oblique' camera. */
+osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene);
+
+/** `scene` under a group with the project's loa_plain program (textured, lit): plain rendering. */
+osg::ref_ptr<osg::Group> withPlainProgram(osg::Node* scene);
 
 /** A case: runs with `frames` timed repetitions per configuration, sets `renderer` to the GL
  *  renderer string when it used GL (left empty: "none (CPU only)"). */

@@ -1,14 +1,8 @@
 // loa-bench case "transitions": the analogue of paper 004's Table 1 on the demo city.
 #include "BenchCase.h"
 
-#include "../common/AppSupport.h"
-
-#include <osgLoA/city/CityGenerator>
-#include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
-
-#include <osg/Uniform>
 
 #include <iomanip>
 #include <iostream>
@@ -33,30 +27,14 @@ osg::ref_ptr<osgLoA::UsageScenario> homogeneous()
     return s;
 }
 
-osg::ref_ptr<osgLoA::OffscreenRenderer> obliqueRenderer(int w, int h, osg::Node* scene)
-{
-    osgLoA::OffscreenRenderer::Settings s;
-    s.width = w;
-    s.height = h;
-    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
-    r->setSceneData(scene);
-    loa::CameraChoice cam;
-    cam.name = "oblique";
-    loa::applyCamera(*r, cam);
-    return r;
-}
 } // namespace
 
 std::vector<Row> transitions(unsigned frames, std::string& renderer)
 {
     std::vector<Row> rows;
-    osg::ref_ptr<osg::Node> city = osgLoA::CityGenerator(osgLoA::CityParameters()).generate();
+    osg::ref_ptr<osg::Node> city = demoCity();
     // Plain: the city with the loa_plain program (textured, lit), no LoA node.
-    osg::ref_ptr<osg::Group> plain = new osg::Group;
-    plain->addChild(city.get());
-    plain->getOrCreateStateSet()->setAttributeAndModes(
-        osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"}).get());
-    plain->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    osg::ref_ptr<osg::Group> plain = withPlainProgram(city.get());
 
     std::vector<std::pair<std::string, osg::ref_ptr<osgLoA::UsageScenario>>> scenarios;
     scenarios.emplace_back("homogeneous", homogeneous());
@@ -68,7 +46,7 @@ std::vector<Row> transitions(unsigned frames, std::string& renderer)
     {
         const std::string size = std::to_string(sz[0]) + "x" + std::to_string(sz[1]);
         {
-            auto r = obliqueRenderer(sz[0], sz[1], plain.get());
+            auto r = makeRenderer(sz[0], sz[1], 0, plain.get());
             renderer = r->getCapabilities().renderer;
             Row row;
             row.parameters = size + " scenario=plain";
@@ -81,7 +59,7 @@ std::vector<Row> transitions(unsigned frames, std::string& renderer)
             osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
             loa->setScenario(sc.second.get());
             loa->addChild(city.get());
-            auto r = obliqueRenderer(sz[0], sz[1], loa.get());
+            auto r = makeRenderer(sz[0], sz[1], 0, loa.get());
             Row row;
             row.times = r->timeFrames(frames);
             const auto& st = loa->getRenderer()->getStatistics();

@@ -84,37 +84,12 @@ options:
   --list         list the cases and exit
 )";
 
-
-osg::ref_ptr<osg::Node> demoCity()
-{
-    static osg::ref_ptr<osg::Node> city = osgLoA::CityGenerator(osgLoA::CityParameters()).generate();
-    return city;
-}
-
-osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene)
-{
-    osgLoA::OffscreenRenderer::Settings s;
-    s.width = w;
-    s.height = h;
-    s.samples = samples;
-    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
-    r->setSceneData(scene);
-    loa::CameraChoice cam;
-    cam.name = "oblique";
-    loa::applyCamera(*r, cam);
-    return r;
-}
-
 std::vector<Row> plainRender(unsigned frames, std::string& renderer)
 {
     std::vector<Row> rows;
     osg::ref_ptr<osg::Node> city = demoCity();
     // The shader variant wraps the same city so both share geometry and textures.
-    osg::ref_ptr<osg::Group> shaded = new osg::Group;
-    shaded->addChild(city.get());
-    shaded->getOrCreateStateSet()->setAttributeAndModes(
-        osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"}).get());
-    shaded->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    osg::ref_ptr<osg::Group> shaded = withPlainProgram(city.get());
     const int sizes[3][2] = {{800, 600}, {1280, 720}, {1920, 1080}};
     for (const auto& sz : sizes)
         for (int pipeline = 0; pipeline < 2; ++pipeline)
@@ -355,6 +330,36 @@ std::string csvQuote(const std::string& s)
     return q + "\"";
 }
 } // namespace
+
+osg::ref_ptr<osg::Node> demoCity()
+{
+    static osg::ref_ptr<osg::Node> city = osgLoA::CityGenerator(osgLoA::CityParameters()).generate();
+    return city;
+}
+
+osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene)
+{
+    osgLoA::OffscreenRenderer::Settings s;
+    s.width = w;
+    s.height = h;
+    s.samples = samples;
+    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
+    r->setSceneData(scene);
+    loa::CameraChoice cam;
+    cam.name = "oblique";
+    loa::applyCamera(*r, cam);
+    return r;
+}
+
+osg::ref_ptr<osg::Group> withPlainProgram(osg::Node* scene)
+{
+    osg::ref_ptr<osg::Group> g = new osg::Group;
+    g->addChild(scene);
+    g->getOrCreateStateSet()->setAttributeAndModes(
+        osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"}).get());
+    g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    return g;
+}
 
 int main(int argc, char** argv)
 {

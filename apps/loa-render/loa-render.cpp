@@ -246,7 +246,7 @@ int run(const Options& o)
             loaNode->getRenderer()->getABuffer()->getLastFrameStatistics();
         const auto mem = osgLoA::TransitionRenderer::memory(
             o.width, o.height, unsigned(std::max(ab.samples, 1)), unsigned(std::max(ab.memory.layers, 1)),
-            st.pingPongBuffer, st.unsharp);
+            st.pingPongBuffer, st.unsharp, loaNode->getRenderer()->getUnsharpSigma());
         std::cout << std::setprecision(1) << "GPU memory of the LoA passes: " << mem.totalBytes() / 1048576.0
                   << " MiB (A-buffer " << mem.aBufferBytes / 1048576.0
                   << " with N=" << std::max(ab.samples, 1) << " x " << std::max(ab.memory.layers, 1)

@@ -7,6 +7,7 @@
 
 #include <osg/BlendFunc>
 #include <osg/Depth>
+#include <osg/Geode>
 
 namespace osgLoA
 {
@@ -23,11 +24,19 @@ osg::Uniform* sampler(osg::StateSet& ss, const char* name, int unit)
 
 ImageCompositing::ImageCompositing()
 {
-    _geode = new osg::Geode;
-    _geode->setName("osgLoA.ImageCompositing");
-    _geode->setCullingActive(false);
-    _geode->addDrawable(detail::createFullScreenTriangle().get());
-    osg::StateSet* ss = _geode->getOrCreateStateSet();
+    _switch = new osg::Switch;
+    _switch->setName("osgLoA.ImageCompositing");
+    _switch->setCullingActive(false);
+    for (bool aBuffer : {false, true})
+    {
+        osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+        geode->setName(aBuffer ? "osgLoA.ImageCompositing.abuffer" : "osgLoA.ImageCompositing.opaque");
+        geode->setCullingActive(false);
+        geode->addDrawable(detail::createFullScreenTriangle().get());
+        if (aBuffer) geode->getOrCreateStateSet()->setDefine("LOA_USE_ABUFFER");
+        _switch->addChild(geode.get(), !aBuffer);
+    }
+    osg::StateSet* ss = _switch->getOrCreateStateSet();
     ss->setDataVariance(osg::Object::DYNAMIC);
     ss->setAttributeAndModes(
         ShaderLibrary::createProgram(
@@ -51,15 +60,14 @@ ImageCompositing::ImageCompositing()
     sampler(*ss, "loa_pingDepth0", 9);
     sampler(*ss, "loa_pingColor1", 10);
     sampler(*ss, "loa_pingDepth1", 11);
-    _useABuffer = new osg::Uniform("loa_useABuffer", false);
     _usePingPong = new osg::Uniform("loa_usePingPong", false);
     _useEdges = new osg::Uniform("loa_useEdges", false);
     _useUnsharp = new osg::Uniform("loa_useUnsharp", false);
     _range = new osg::Uniform("loa_depthRange", osg::Vec2f(1.0f, 1000.0f));
     _ortho = new osg::Uniform("loa_orthographic", false);
     _merge = new osg::Uniform("loa_mergeEpsilon", 2.0e-6f);
-    for (osg::Uniform* u : {_useABuffer.get(), _usePingPong.get(), _useEdges.get(), _useUnsharp.get(),
-                            _range.get(), _ortho.get(), _merge.get()})
+    for (osg::Uniform* u :
+         {_usePingPong.get(), _useEdges.get(), _useUnsharp.get(), _range.get(), _ortho.get(), _merge.get()})
     {
         u->setDataVariance(osg::Object::DYNAMIC);
         ss->addUniform(u);
@@ -86,11 +94,12 @@ void ImageCompositing::setPingPongBuffer(PingPongBuffer* p)
 void ImageCompositing::setDepthUnsharpMask(DepthUnsharpMask* u)
 {
     getStateSet()->setTextureAttribute(6, u->getResult());
+    getStateSet()->addUniform(u->getResultScaleUniform());
 }
 
 void ImageCompositing::setInputs(bool aBuffer, bool pingPong, bool edges, bool unsharp)
 {
-    _useABuffer->set(aBuffer);
+    _switch->setSingleChildOn(aBuffer ? 1u : 0u);
     _usePingPong->set(pingPong);
     _useEdges->set(edges);
     _useUnsharp->set(unsharp);

@@ -29,6 +29,19 @@ float BlendFunction::fadeOut(float interest) const
     return 1.0f - smoothstep(outBegin, outEnd, interest);
 }
 
+bool BlendFunction::contributesThroughout(float lo, float hi, float margin) const
+{
+    if (std::isnan(lo) || std::isnan(hi) || hi < lo) return false;
+    // The support (see mayContribute) is an interval: [inBegin or (inBegin, up to 1] or
+    // up to outBegin / outEnd, open. Both ends of [lo, hi] must lie inside it, by the margin.
+    // A hard fade-in at or below 0 lets every interest in (interests are never negative).
+    const bool hardIn = !(inEnd > inBegin);
+    if (!(hardIn && inBegin <= 0.0f) && !(lo > inBegin + margin)) return false;
+    if (outBegin >= 1.0f) return true; // fadeOut is 1 for every interest <= 1
+    const float end = outEnd > outBegin ? outEnd : outBegin;
+    return hi < end - margin;
+}
+
 bool BlendFunction::mayContribute(float lo, float hi) const
 {
     if (std::isnan(lo) || std::isnan(hi) || hi < lo) return false;

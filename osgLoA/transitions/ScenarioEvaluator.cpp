@@ -166,6 +166,8 @@ void ScenarioEvaluator::evaluate(const osg::Vec3d& eye, const unsigned char* vis
             m[k].rawWeight = blend.weight(m[k].interest);
             m[k].mayContribute =
                 m[k].fragment ? blend.mayContribute(float(here.lo), float(here.hi)) : m[k].rawWeight > 0.0f;
+            m[k].coversFeature = m[k].fragment ? blend.contributesThroughout(float(here.lo), float(here.hi))
+                                               : m[k].rawWeight > 0.0f;
             sum += m[k].rawWeight;
             contributing += m[k].mayContribute ? 1u : 0u;
         }

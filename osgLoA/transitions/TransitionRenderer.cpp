@@ -107,7 +107,12 @@ private:
     mutable bool _inside = false;
 };
 
-bool opaqueMaterial(osg::Node& node)
+/** One walk over a feature's StateSets: whether its material is opaque (no blending, no
+ *  transparent bin, no translucent base texture), and, on each StateSet with a texture on unit 0,
+ *  the uniform loa_hasTexture = true. The feature's own state sets it false, so the styles sample
+ *  the base texture exactly for the drawables that have one (a forest's textured floor and its
+ *  untextured crowns are one feature; an unbound sampler reads black). */
+bool inspectMaterial(osg::Node& node)
 {
     bool opaque = true;
     StateSetVisitor v(
@@ -116,12 +121,11 @@ bool opaqueMaterial(osg::Node& node)
             if (ss.getRenderingHint() == osg::StateSet::TRANSPARENT_BIN ||
                 (ss.getMode(GL_BLEND) & osg::StateAttribute::ON))
                 opaque = false;
-            for (unsigned u = 0; u < ss.getTextureAttributeList().size(); ++u)
-            {
-                const osg::Texture* t = dynamic_cast<const osg::Texture*>(
-                    ss.getTextureAttribute(u, osg::StateAttribute::TEXTURE));
-                if (u == 0 && t && t->getImage(0) && t->getImage(0)->isImageTranslucent()) opaque = false;
-            }
+            const osg::Texture* t =
+                dynamic_cast<const osg::Texture*>(ss.getTextureAttribute(0, osg::StateAttribute::TEXTURE));
+            if (!t) return;
+            if (t->getImage(0) && t->getImage(0)->isImageTranslucent()) opaque = false;
+            if (!ss.getUniform("loa_hasTexture")) ss.addUniform(new osg::Uniform("loa_hasTexture", true));
         });
     node.accept(v);
     return opaque;
@@ -213,8 +217,8 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _internal->addChild(_gbuffer->getCamera());
     _internal->addChild(_pingPong->getCamera(0));
     _internal->addChild(_pingPong->getCamera(1));
-    _internal->addChild(_unsharp->getCamera(0));
-    _internal->addChild(_unsharp->getCamera(1));
+    for (unsigned p = 0; p < DepthUnsharpMask::NUM_PASSES; ++p)
+        _internal->addChild(_unsharp->getCamera(p));
     _internal->addChild(_compositing->getNode());
     _internal->addChild(_passStates.get());
     _internal->addChild(_aBuffer->getCamera());
@@ -247,6 +251,7 @@ void TransitionRenderer::setSettings(const Settings& s)
     {
         if (_aBuffer.valid() && _proxy[PROXY_ABUFFER].valid())
             _aBuffer->getRoutedGroup()->removeChild(_proxy[PROXY_ABUFFER].get());
+        if (_aBuffer.valid() && _internal.valid()) _internal->removeChild(_aBuffer->getCamera());
         _aBuffer = new StencilRoutedABuffer(int(s.samples), int(s.maxPasses));
         // Same matrices as the G-buffer (the front-depth test compares their depths).
         _aBuffer->getCamera()->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
@@ -256,11 +261,7 @@ void TransitionRenderer::setSettings(const Settings& s)
         // Local arrays sized to the fragments that can occur: the A-buffer's N x passes plus the
         // G-buffer's opaque colour and the ping-pong fragment.
         _aBuffer->setMaxFragmentsDefine(_compositing->getStateSet(), 2);
-        if (_internal.valid())
-        {
-            _internal->removeChildren(7, _internal->getNumChildren() - 7);
-            _internal->addChild(_aBuffer->getCamera());
-        }
+        if (_internal.valid()) _internal->addChild(_aBuffer->getCamera());
     }
     _compositing->setMergeEpsilon(s.mergeSurfaces ? s.depthEpsilon : -1.0f);
     for (auto& st : _styles)
@@ -351,9 +352,11 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
             return ss;
         };
         st.shared = passState("LOA_PASS_GBUFFER_COLOR", false);
+        st.sharedCovered = passState("LOA_PASS_GBUFFER_COLOR LOA_COVERED", false);
         st.aBuffer = passState("LOA_PASS_ABUFFER", true);
         st.pingPong = passState("LOA_PASS_PINGPONG", true);
-        for (osg::StateSet* ss : {st.shared.get(), st.aBuffer.get(), st.pingPong.get()})
+        for (osg::StateSet* ss :
+             {st.shared.get(), st.sharedCovered.get(), st.aBuffer.get(), st.pingPong.get()})
         {
             osg::ref_ptr<osg::Node> holder = new osg::Node;
             holder->setStateSet(ss);
@@ -400,15 +403,8 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         _featureState[i] = ss;
         if (osg::Node* node = e.node.get())
         {
-            _opaqueMaterial[i] = opaqueMaterial(*node) ? 1 : 0;
-            bool textured = false;
-            StateSetVisitor tv(
-                [&](osg::StateSet& tss) {
-                    textured =
-                        textured || tss.getTextureAttribute(0, osg::StateAttribute::TEXTURE) != nullptr;
-                });
-            node->accept(tv);
-            uniform(*ss, "loa_hasTexture", osg::Uniform::BOOL)->set(textured);
+            _opaqueMaterial[i] = inspectMaterial(*node) ? 1 : 0;
+            uniform(*ss, "loa_hasTexture", osg::Uniform::BOOL)->set(false);
         }
         const auto& subs = _settings.pingPongSubTypes;
         _routedToPingPong[i] = _settings.pingPong && e.feature->getType() == FeatureType::Green &&
@@ -531,11 +527,13 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
         const ScenarioEvaluator::Match* m = evaluator.matchesOf(fs);
         unsigned contributing = 0, visibleMask = 0;
         int last = -1;
+        bool covers = false;
         for (unsigned k = 0; k < fs.numMatches; ++k)
         {
             if (!m[k].mayContribute || m[k].configuration >= _styles.size()) continue;
             ++contributing;
             last = int(m[k].configuration);
+            covers = m[k].coversFeature;
             if (_styles[m[k].configuration].visible) visibleMask |= 1u << m[k].configuration;
         }
         if (visibleMask == 0) continue;
@@ -543,6 +541,7 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
         if (only && only->opaque && _opaqueMaterial[i])
         {
             d.shared = last;
+            d.covered = covers;
             _sharedAny[unsigned(last)] = 1;
             ++_stats.sharedDraws;
         }
@@ -637,10 +636,20 @@ void TransitionRenderer::drawFeature(unsigned entry, osg::Node& node, osgUtil::C
         _draws.push_back(rec);
     }
     cv.pushStateSet(_featureState[i].get());
+    // A feature its one configuration covers entirely skips the per-fragment weight test; the
+    // pass state is pushed again per feature so that nested features do not inherit the variant.
+    osg::StateSet* variant = nullptr;
+    if (kind == Draw::SHARED)
+    {
+        const StyleState& st = _styles[unsigned(d.shared)];
+        variant = d.covered ? st.sharedCovered.get() : st.shared.get();
+    }
+    if (variant) cv.pushStateSet(variant);
     if (callback)
         callback->traverse(&node, &cv);
     else if (osg::Drawable* drawable = node.asDrawable())
         cv.apply(*drawable);
+    if (variant) cv.popStateSet();
     cv.popStateSet();
 }
 
@@ -724,8 +733,8 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
         _unsharp->setSize(w, h);
         _unsharp->setSigma(_maxUnsharpSigma);
         _unsharp->setDepthRange(float(zNear), float(zFar), ortho);
-        _unsharp->getCamera(0)->accept(cv);
-        _unsharp->getCamera(1)->accept(cv);
+        for (unsigned p = 0; p < DepthUnsharpMask::NUM_PASSES; ++p)
+            _unsharp->getCamera(p)->accept(cv);
     }
     _compositing->setInputs(_stats.aBuffer, _stats.pingPongBuffer, _settings.edges, _stats.unsharp);
     _compositing->setDepthRange(float(zNear), float(zFar), ortho);
@@ -733,13 +742,14 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
 }
 
 TransitionRenderer::Memory TransitionRenderer::memory(int width, int height, unsigned samples,
-                                                      unsigned passes, bool pingPong, bool unsharp)
+                                                      unsigned passes, bool pingPong, bool unsharp,
+                                                      float unsharpSigma)
 {
     Memory m;
     m.aBufferBytes = double(ABufferMemory::of(width, height, int(samples), int(passes)).bytes());
     m.pingPongBytes = pingPong ? PingPongBuffer::memoryBytes(width, height) : 0.0;
     m.geometryBufferBytes = GeometryBuffer::memoryBytes(width, height);
-    m.unsharpBytes = unsharp ? DepthUnsharpMask::memoryBytes(width, height) : 0.0;
+    m.unsharpBytes = unsharp ? DepthUnsharpMask::memoryBytes(width, height, unsharpSigma) : 0.0;
     m.paperBytes = double(width) * height * (2.0 * samples + 7.0) * 4.0;
     return m;
 }
@@ -750,8 +760,8 @@ void TransitionRenderer::releaseGLObjects(osg::State* state) const
     _aBuffer->getCamera()->releaseGLObjects(state);
     _pingPong->getCamera(0)->releaseGLObjects(state);
     _pingPong->getCamera(1)->releaseGLObjects(state);
-    _unsharp->getCamera(0)->releaseGLObjects(state);
-    _unsharp->getCamera(1)->releaseGLObjects(state);
+    for (unsigned p = 0; p < DepthUnsharpMask::NUM_PASSES; ++p)
+        _unsharp->getCamera(p)->releaseGLObjects(state);
     const_cast<ImageCompositing*>(_compositing.get())->getNode()->releaseGLObjects(state);
     for (const auto& p : _programs)
         p.second->releaseGLObjects(state);
@@ -763,8 +773,8 @@ void TransitionRenderer::resizeGLObjectBuffers(unsigned maxSize)
     _aBuffer->getCamera()->resizeGLObjectBuffers(maxSize);
     _pingPong->getCamera(0)->resizeGLObjectBuffers(maxSize);
     _pingPong->getCamera(1)->resizeGLObjectBuffers(maxSize);
-    _unsharp->getCamera(0)->resizeGLObjectBuffers(maxSize);
-    _unsharp->getCamera(1)->resizeGLObjectBuffers(maxSize);
+    for (unsigned p = 0; p < DepthUnsharpMask::NUM_PASSES; ++p)
+        _unsharp->getCamera(p)->resizeGLObjectBuffers(maxSize);
     _compositing->getNode()->resizeGLObjectBuffers(maxSize);
     for (const auto& p : _programs)
         p.second->resizeGLObjectBuffers(maxSize);

@@ -50,6 +50,48 @@ void TransitionUniforms::applyScenario(osg::StateSet& ss, const ScenarioEvaluato
         rampA->setElement(j, osg::Vec4f(ramp[0].x(), ramp[0].y(), ramp[1].x(), ramp[1].y()));
         rampB->setElement(j, osg::Vec4f(ramp[2].x(), ramp[2].y(), ramp[3].x(), ramp[3].y()));
     }
+    // Interest groups: fragment-mode configurations whose interest is the same function (same
+    // metrics, weights, ramps and combination) share one evaluation per fragment. With at most
+    // kMaxInterestGroups of them the shader is specialized at compile time (LOA_INTEREST_GROUPS,
+    // LOA_METRICS: the metric kinds present), so a fragment computes each group's interest once
+    // and nothing for object-mode configurations or absent metrics; llvmpipe executes both sides
+    // of every branch, so run-time tests would not spare it the work. More groups: the generic
+    // path, one evaluation per configuration.
+    osg::Uniform* group = uniform(ss, "loa_interestGroup", osg::Uniform::INT, kN);
+    osg::Uniform* groupConfig = uniform(ss, "loa_groupConfiguration", osg::Uniform::INT, kMaxInterestGroups);
+    std::vector<unsigned> representatives;
+    int metrics = 0;
+    for (unsigned j = 0; j < n; ++j)
+    {
+        const TransitionConfiguration& c = *configs[j];
+        int g = -1;
+        if (c.getInterpolation() == TransitionConfiguration::FRAGMENT)
+        {
+            for (unsigned r = 0; r < representatives.size() && g < 0; ++r)
+                if (configs[representatives[r]]->hasSameInterestAs(c)) g = int(r);
+            if (g < 0)
+            {
+                g = int(representatives.size());
+                representatives.push_back(j);
+            }
+            for (const auto& m : c.getMetrics())
+                if (m.valid()) metrics |= 1 << m->getKind();
+        }
+        group->setElement(j, g);
+    }
+    for (unsigned r = 0; r < kMaxInterestGroups; ++r)
+        groupConfig->setElement(r, r < representatives.size() ? int(representatives[r]) : 0);
+    if (representatives.size() <= kMaxInterestGroups)
+    {
+        ss.setDefine("LOA_INTEREST_GROUPS", std::to_string(representatives.size()));
+        ss.setDefine("LOA_METRICS", std::to_string(metrics));
+    }
+    else
+    {
+        ss.removeDefine("LOA_INTEREST_GROUPS");
+        ss.removeDefine("LOA_METRICS");
+    }
+
     const osg::BoundingBoxd& focus = evaluator.getView().focus;
     uniform(ss, "loa_hasFocus", osg::Uniform::BOOL)->set(focus.valid());
     if (focus.valid())
