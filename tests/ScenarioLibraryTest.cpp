@@ -1,17 +1,28 @@
 // ScenarioLibrary's guard against text that OSG 3.6.5's ASCII reader loops on forever
 // (AsciiInputIterator::readWrappedString at the end of the stream), with the reproducers the
-// fuzzer found (tests/fuzz/crashes/hang-*).
+// fuzzer found (tests/fuzz/crashes/hang-*), and the helper program loa-scenario-parse that
+// parses text files out of process.
 #include "support/TestSupport.h"
 
 #include <osgLoA/transitions/ScenarioLibrary>
 
 #include <osgDB/FileUtils>
+#include <osgDB/ObjectWrapper>
+#include <osgDB/Registry>
+
+#include <OpenThreads/ScopedLock>
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <mutex>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 using namespace osgLoA;
 
@@ -24,6 +35,80 @@ std::string textOf(const std::string& path)
     s << in.rdbuf();
     return s.str();
 }
+
+double secondsSince(std::chrono::steady_clock::time_point t0)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/** Sets an environment variable for a scope, then restores it. */
+class ScopedEnvironment
+{
+public:
+    ScopedEnvironment(const char* name, const std::string& value) : _name(name)
+    {
+        if (const char* old = std::getenv(name)) _old = old, _had = true;
+        setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnvironment()
+    {
+        if (_had)
+            setenv(_name, _old.c_str(), 1);
+        else
+            unsetenv(_name);
+    }
+    ScopedEnvironment(const ScopedEnvironment&) = delete;
+    ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+    const char* _name;
+    std::string _old;
+    bool _had = false;
+};
+
+/** osgDB's ObjectWrapperManager::_wrapperMutex (protected; reached through a member pointer). */
+OpenThreads::ReentrantMutex& wrapperMutex()
+{
+    struct Access : osgDB::ObjectWrapperManager
+    {
+        static OpenThreads::ReentrantMutex osgDB::ObjectWrapperManager::*member()
+        {
+            return &Access::_wrapperMutex;
+        }
+    };
+    return osgDB::Registry::instance()->getObjectWrapperManager()->*Access::member();
+}
+
+/** Threads that each run a step over and over until the object goes. */
+class BusyThreads
+{
+public:
+    BusyThreads() = default;
+    BusyThreads(const BusyThreads&) = delete;
+    BusyThreads& operator=(const BusyThreads&) = delete;
+    ~BusyThreads()
+    {
+        _stop = true;
+        for (std::thread& t : _threads)
+            t.join();
+    }
+    void start(std::function<void()> step)
+    {
+        _threads.emplace_back(
+            [this, step]
+            {
+                while (!_stop)
+                {
+                    step();
+                    std::this_thread::sleep_for(std::chrono::microseconds(100));
+                }
+            });
+    }
+
+private:
+    std::atomic<bool> _stop{false};
+    std::vector<std::thread> _threads;
+};
 } // namespace
 
 TEST(ScenarioLibraryTest, AsciiStructureCheck)
@@ -116,4 +201,131 @@ TEST(ScenarioLibraryTest, AReaderThatLoopsIsStoppedWithAMessage)
     {
         EXPECT_NE(std::string(e.what()).find("LOUDNESS"), std::string::npos) << e.what();
     }
+}
+
+// The original problem: the text parse used to run in a fork() of this process, and a fork of a
+// multi-threaded process (Mesa's llvmpipe threads, OSG's pager threads) can deadlock on a lock
+// another thread holds at that moment: the child is left with the lock and no thread to release
+// it. Here one thread holds osgDB's wrapper lock, which every read of an osgLoA object takes
+// (ObjectWrapperManager::findWrapper), nearly all the time (a forked child hung on it), and
+// others keep taking the registry's plugin lock, the heap and a mutex of their own; every read
+// returns, valid files with their scenario and a malformed one with a ScenarioError, in time.
+TEST(ScenarioLibraryTest, TextFilesAreReadWhileOtherThreadsHoldLocks)
+{
+    const std::string route = std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt";
+    const std::size_t configurations = ScenarioLibrary::createBuiltin("route")->getConfigurations().size();
+    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest/threads");
+    std::string bad = textOf(route);
+    bad.replace(bad.find("Kind REGION"), 11, "Kind LOUDNESS");
+    std::ofstream(dir + "/bad-kind.osgt") << bad;
+    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgx");
+
+    std::mutex held; // outlives the threads
+    BusyThreads busy;
+    busy.start(
+        [] // osgDB's wrapper lock, held 2 ms at a time
+        {
+            OpenThreads::ScopedLock<OpenThreads::ReentrantMutex> lock(wrapperMutex());
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        });
+    for (const char* ext : {"osgt", "osgb"})
+        busy.start(
+            [&held, ext]
+            {
+                std::lock_guard<std::mutex> lock(held);
+                osgDB::Registry::instance()->getReaderWriterForExtension(ext);
+                const std::vector<std::string> garbage(64, std::string(200, 'x'));
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
+            });
+    for (int round = 0; round < 3; ++round)
+    {
+        for (const std::string& path : {route, dir + "/route.osgx"})
+        {
+            const auto t0 = std::chrono::steady_clock::now();
+            osg::ref_ptr<UsageScenario> s;
+            EXPECT_NO_THROW(s = ScenarioLibrary::readFile(path)) << path;
+            EXPECT_TRUE(s.valid()) << path;
+            if (s.valid())
+            {
+                EXPECT_EQ(s->getName(), "route") << path;
+                EXPECT_EQ(s->getConfigurations().size(), configurations) << path;
+            }
+            EXPECT_LT(secondsSince(t0), 5.0) << path;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        try
+        {
+            ScenarioLibrary::readFile(dir + "/bad-kind.osgt");
+            ADD_FAILURE() << "read";
+        }
+        catch (const ScenarioError& e)
+        {
+            EXPECT_NE(std::string(e.what()).find(dir + "/bad-kind.osgt"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("LOUDNESS"), std::string::npos) << e.what();
+        }
+        EXPECT_LT(secondsSince(t0), 5.0);
+    }
+}
+
+// The text goes to the helper while its reply comes back: a file far larger than a pipe's or a
+// socket's buffer (a 4 MB description) gets through whole, in both directions.
+TEST(ScenarioLibraryTest, LargeTextFilesGoThroughWhole)
+{
+    std::string text = textOf(std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt");
+    const std::string padding(std::size_t(4) << 20, 'x');
+    text.replace(text.find("Description \"") + 13, 0, padding);
+    const auto t0 = std::chrono::steady_clock::now();
+    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::readData(text, "large.osgt");
+    EXPECT_LT(secondsSince(t0), 5.0);
+    ASSERT_TRUE(s.valid());
+    EXPECT_EQ(s->getDescription().compare(0, padding.size(), padding), 0);
+    EXPECT_GT(s->getDescription().size(), padding.size());
+}
+
+// The helper is found through OSGLOA_SCENARIO_PARSER first; a wrong path there is a clear error
+// (no quiet search elsewhere), and binary files, which need no helper, still read.
+TEST(ScenarioLibraryTest, AMissingHelperIsAClearError)
+{
+    const std::string route = std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt";
+    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest/helper");
+    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgb");
+    {
+        ScopedEnvironment env("OSGLOA_SCENARIO_PARSER", dir + "/no-such-helper");
+        try
+        {
+            ScenarioLibrary::readFile(route);
+            ADD_FAILURE() << "read without a helper";
+        }
+        catch (const ScenarioError& e)
+        {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("'" + route + "'"), std::string::npos) << what;
+            EXPECT_NE(what.find("loa-scenario-parse not found"), std::string::npos) << what;
+            EXPECT_NE(what.find(dir + "/no-such-helper"), std::string::npos) << what;
+            EXPECT_NE(what.find("OSGLOA_SCENARIO_PARSER"), std::string::npos) << what;
+        }
+        EXPECT_EQ(ScenarioLibrary::readFile(dir + "/route.osgb")->getName(), "route");
+    }
+    {
+        ScopedEnvironment env("OSGLOA_SCENARIO_PARSER",
+                              std::string(LOA_BINARY_DIR) + "/bin/loa-scenario-parse");
+        EXPECT_EQ(ScenarioLibrary::readFile(route)->getName(), "route");
+    }
+    EXPECT_EQ(ScenarioLibrary::readFile(route)->getName(), "route"); // found next to libosgLoA
+}
+
+// The helper as a program: a file argument or stdin, one reply on stdout, exit status 0.
+TEST(ScenarioLibraryTest, TheHelperRepliesWithTheScenarioOrTheError)
+{
+    const std::string helper = std::string(LOA_BINARY_DIR) + "/bin/loa-scenario-parse";
+    const std::string route = std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt";
+    std::string out;
+    ASSERT_EQ(loatest::run("('" + helper + "' '" + route + "' 2>/dev/null)", out), 0) << out;
+    ASSERT_FALSE(out.empty());
+    EXPECT_EQ(out[0], 'S');
+    const std::string bad =
+        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/ub-metric-kind-9-invalid-enum.osgt";
+    ASSERT_EQ(loatest::run("('" + helper + "' --label my-label < '" + bad + "' 2>/dev/null)", out), 0) << out;
+    EXPECT_EQ(out.compare(0, 36, "Ecannot read scenario file 'my-label"), 0) << out;
+    EXPECT_NE(out.find("unknown Kind '9'"), std::string::npos) << out;
 }

@@ -10,25 +10,41 @@
 #include <osgDB/Registry>
 #include <osgDB/WriteFile>
 
+#include "ScenarioTextParser.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <set>
+#include <sstream>
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <poll.h>
-#include <sstream>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 #ifndef OSGLOA_SCENARIO_SOURCE_DIR
 #define OSGLOA_SCENARIO_SOURCE_DIR ""
 #endif
 #ifndef OSGLOA_SCENARIO_INSTALL_DIR
 #define OSGLOA_SCENARIO_INSTALL_DIR ""
+#endif
+#ifndef OSGLOA_LIBDIR_TO_BINDIR
+#define OSGLOA_LIBDIR_TO_BINDIR "../bin"
+#endif
+#ifndef OSGLOA_BUILD_BINDIR
+#define OSGLOA_BUILD_BINDIR ""
 #endif
 
 namespace osgLoA
@@ -361,104 +377,269 @@ osg::ref_ptr<UsageScenario> scenarioOf(osgDB::ReaderWriter::ReadResult& rr, cons
     return s;
 }
 
-// OSG 3.6.5's text readers (ASCII and XML) can loop forever on malformed input (at the end of
-// the stream, or once a number fails to parse and the stream stays failed). So a text file is
-// parsed in a child process with a deadline; the child sends the scenario back in OSG's binary
-// format (which our own writer produced, so it reads safely) or the reader's message.
-osg::ref_ptr<UsageScenario> readTextInChild(osgDB::ReaderWriter& rw, const std::string& data,
-                                            const std::string& label)
+// osgdb_osg's reader for all three scenario file formats, with our serializer plugin loaded.
+osgDB::ReaderWriter& scenarioReaderWriter()
 {
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    if (!rw) throw ScenarioError("no osgDB reader for scenario files (is the osg2 plugin installed?)");
+    osgDB::Registry::instance()->getObjectWrapperManager()->findWrapper("osgLoA::UsageScenario");
+    return *rw;
+}
+
+const char* const kParserName = "loa-scenario-parse";
+const char* const kParserVariable = "OSGLOA_SCENARIO_PARSER";
+const int kParseSeconds = 5;
+
+bool isExecutableFile(const std::string& path)
+{
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(path.c_str(), X_OK) == 0;
+}
+
+// A function of libosgLoA itself (internal linkage, so its address lies in the library).
+void libraryAnchor() {}
+
+// The directory of the libosgLoA this code runs in (symbolic links resolved), or "".
+std::string libraryDirectory()
+{
+    Dl_info info;
+    if (dladdr(reinterpret_cast<void*>(&libraryAnchor), &info) == 0 || !info.dli_fname) return std::string();
+    std::string path = info.dli_fname;
+    if (char* real = realpath(info.dli_fname, nullptr))
+    {
+        path = real;
+        std::free(real);
+    }
+    return osgDB::getFilePath(path);
+}
+
+// The helper loa-scenario-parse: $OSGLOA_SCENARIO_PARSER, else next to libosgLoA
+// (<libdir>/../bin as in the build tree and a usual install, <libdir>/<relative install bindir>,
+// <libdir>), else the build tree's bin/. Throws ScenarioError when there is none.
+std::string findParser(const std::string& label)
+{
+    const std::string prefix = "cannot read text scenario file '" + label + "': helper " + kParserName;
+    if (const char* env = std::getenv(kParserVariable))
+        if (*env)
+        {
+            if (!isExecutableFile(env))
+                throw ScenarioError(prefix + " not found at '" + env + "' (" + kParserVariable + ")");
+            return env;
+        }
+    std::vector<std::string> candidates;
+    const std::string libDir = libraryDirectory();
+    if (!libDir.empty())
+    {
+        candidates.push_back(libDir + "/../bin/" + kParserName);
+        const std::string installed = std::string(OSGLOA_LIBDIR_TO_BINDIR);
+        if (!installed.empty() && installed != "../bin")
+            candidates.push_back(libDir + "/" + installed + "/" + kParserName);
+        candidates.push_back(libDir + "/" + kParserName);
+    }
+    if (*OSGLOA_BUILD_BINDIR) candidates.push_back(std::string(OSGLOA_BUILD_BINDIR) + "/" + kParserName);
+    std::string looked;
+    for (const std::string& c : candidates)
+    {
+        if (isExecutableFile(c)) return c;
+        looked += (looked.empty() ? "" : ", ") + c;
+    }
+    throw ScenarioError(prefix + " not found (set " + kParserVariable + "); looked for " + looked);
+}
+
+// A file descriptor closed when it goes out of scope.
+struct Descriptor
+{
+    int fd = -1;
+    Descriptor() = default;
+    Descriptor(const Descriptor&) = delete;
+    Descriptor& operator=(const Descriptor&) = delete;
+    ~Descriptor() { reset(); }
+    void reset()
+    {
+        if (fd >= 0) close(fd);
+        fd = -1;
+    }
+};
+
+// The helper's environment: ours, with osgDB's library path as this process has it, so that
+// the helper loads the same plugins (the serializer plugin above all) even where this process
+// set its path in code rather than with OSG_LIBRARY_PATH.
+std::vector<std::string> parserEnvironment()
+{
+    std::vector<std::string> env;
+    for (char** e = environ; e && *e; ++e)
+        if (std::strncmp(*e, "OSG_LIBRARY_PATH=", 17) != 0) env.push_back(*e);
+    std::string path;
+    for (const std::string& dir : osgDB::Registry::instance()->getLibraryFilePathList())
+        path += (path.empty() ? "" : ":") + dir;
+    env.push_back("OSG_LIBRARY_PATH=" + path);
+    return env;
+}
+
+// OSG 3.6.5's text readers (ASCII and XML) can loop forever on malformed input (at the end of
+// the stream, or once a number fails to parse and the stream stays failed), and could crash. So
+// a text file is parsed by the helper program loa-scenario-parse (detail::parseTextScenario)
+// with a deadline; it sends the scenario back in OSG's binary format (which our own writer
+// produced, so it reads safely) or the reader's message. A spawned program, not a fork()ed
+// copy of this process: a fork of a multi-threaded process (Mesa's llvmpipe threads, OSG's
+// pager threads) can deadlock on a lock another thread held when it forked.
+osg::ref_ptr<UsageScenario> readTextOutOfProcess(osgDB::ReaderWriter& rw, const std::string& data,
+                                                 const std::string& label)
+{
+    const std::string parser = findParser(label);
+    const std::string cannot = "cannot read scenario file '" + label + "': ";
+    // The text goes in through a socket (send() with MSG_NOSIGNAL: a helper that has gone gives
+    // EPIPE, not a SIGPIPE for this process), the reply comes out through a pipe. Both are
+    // close-on-exec here, so that programs other threads start do not inherit them.
+    Descriptor input, childInput, output, childOutput;
     int fds[2];
-    if (pipe(fds) != 0) throw ScenarioError("cannot read scenario file '" + label + "': pipe() failed");
-    const pid_t pid = fork();
-    if (pid < 0)
-    {
-        close(fds[0]);
-        close(fds[1]);
-        throw ScenarioError("cannot read scenario file '" + label + "': fork() failed");
-    }
-    if (pid == 0)
-    {
-        close(fds[0]);
-        // The reader's complaints come back in the reply; a looping reader prints endlessly.
-        const int devNull = open("/dev/null", O_WRONLY);
-        if (devNull >= 0)
-        {
-            dup2(devNull, 1);
-            dup2(devNull, 2);
-        }
-        std::string reply;
-        try
-        {
-            std::istringstream in(data);
-            osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
-            osg::ref_ptr<UsageScenario> s = scenarioOf(rr, label);
-            std::ostringstream out;
-            osg::ref_ptr<osgDB::Options> binary = new osgDB::Options;
-            binary->setPluginStringData("fileType", "Binary");
-            rw.writeObject(*s, out, binary.get());
-            reply = "S" + out.str();
-        }
-        catch (const std::exception& e)
-        {
-            reply = std::string("E") + e.what();
-        }
-        std::size_t done = 0;
-        while (done < reply.size())
-        {
-            const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
-            if (n <= 0) break;
-            done += std::size_t(n);
-        }
-        close(fds[1]);
-        _exit(0);
-    }
-    close(fds[1]);
+    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+        throw ScenarioError(cannot + "socketpair() failed: " + std::strerror(errno));
+    input.fd = fds[0];
+    childInput.fd = fds[1];
+    if (pipe2(fds, O_CLOEXEC) != 0) throw ScenarioError(cannot + "pipe() failed: " + std::strerror(errno));
+    output.fd = fds[0];
+    childOutput.fd = fds[1];
+
+    // stdin and stdout are the channels; the reader's complaints go to /dev/null (they come
+    // back in the reply, and a looping reader prints endlessly).
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, childInput.fd, STDIN_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, childOutput.fd, STDOUT_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+    const std::vector<std::string> env = parserEnvironment();
+    std::vector<char*> envp;
+    for (const std::string& e : env)
+        envp.push_back(const_cast<char*>(e.c_str()));
+    envp.push_back(nullptr);
+    const std::string labelOption = "--label";
+    char* argv[] = {const_cast<char*>(parser.c_str()), const_cast<char*>(labelOption.c_str()),
+                    const_cast<char*>(label.c_str()), nullptr};
+    pid_t pid = -1;
+    const int spawned = posix_spawn(&pid, parser.c_str(), &actions, &attributes, argv, envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+    if (spawned != 0)
+        throw ScenarioError(cannot + "cannot start the helper '" + parser + "': " + std::strerror(spawned));
+    childInput.reset();
+    childOutput.reset();
+
+    // Send the text and read the reply at the same time: the text may not fit the socket's
+    // buffer, and a helper that loops may never read all of it.
     std::string reply;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kParseSeconds);
+    const auto msLeft = [&deadline]
+    {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(deadline -
+                                                                     std::chrono::steady_clock::now())
+            .count();
+    };
     bool timedOut = false;
+    std::size_t sent = 0;
+    if (data.empty()) input.reset();
     char buffer[65536];
     for (;;)
     {
-        const auto left =
-            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now())
-                .count();
+        const auto left = msLeft();
         if (left <= 0)
         {
             timedOut = true;
             break;
         }
-        pollfd p{fds[0], POLLIN, 0};
-        const int r = poll(&p, 1, int(left));
+        pollfd p[2] = {{output.fd, POLLIN, 0}, {input.fd, POLLOUT, 0}};
+        const int r = poll(p, 2, int(left));
         if (r < 0 && errno == EINTR) continue;
         if (r <= 0)
         {
             timedOut = r == 0;
             break;
         }
-        const ssize_t n = read(fds[0], buffer, sizeof(buffer));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        reply.append(buffer, std::size_t(n));
+        if (input.fd >= 0 && p[1].revents != 0)
+        {
+            const ssize_t n =
+                send(input.fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
+            if (n > 0) sent += std::size_t(n);
+            if ((n < 0 && errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) || sent == data.size())
+                input.reset(); // all sent (the helper sees the end of its input), or it stopped reading
+        }
+        if (p[0].revents != 0)
+        {
+            const ssize_t n = read(output.fd, buffer, sizeof(buffer));
+            if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+            if (n <= 0) break;
+            reply.append(buffer, std::size_t(n));
+        }
     }
-    close(fds[0]);
-    if (timedOut) kill(pid, SIGKILL);
+    input.reset();
+    output.reset();
+    // The helper has sent its reply (or died); it gets until the deadline to exit.
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    bool exited = false;
+    while (!timedOut && !exited && msLeft() > 0)
     {
+        const pid_t reaped = waitpid(pid, &status, WNOHANG);
+        if (reaped > 0 || (reaped < 0 && errno != EINTR))
+            exited = true;
+        else if (reaped == 0)
+            poll(nullptr, 0, 5);
+    }
+    if (!exited)
+    {
+        kill(pid, SIGKILL);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        {
+        }
+        if (reply.empty()) timedOut = true; // a complete reply still counts
     }
     if (timedOut)
         throw ScenarioError("malformed scenario file '" + label +
-                            "': OpenSceneGraph's text reader did not finish within 5 s");
+                            "': OpenSceneGraph's text reader did not finish within " +
+                            std::to_string(kParseSeconds) + " s");
     if (reply.empty())
+    {
+        if (WIFEXITED(status))
+            throw ScenarioError(cannot + "the helper '" + parser + "' exited with status " +
+                                std::to_string(WEXITSTATUS(status)) + " without a reply");
         throw ScenarioError("malformed scenario file '" + label +
                             "': OpenSceneGraph's text reader crashed on it");
+    }
     if (reply[0] == 'E') throw ScenarioError(reply.substr(1));
     std::istringstream in(reply.substr(1));
     osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
     return scenarioOf(rr, label);
 }
 } // namespace
+
+namespace detail
+{
+std::string parseTextScenario(const std::string& text, const std::string& label)
+{
+    try
+    {
+        osgDB::ReaderWriter& rw = scenarioReaderWriter();
+        std::istringstream in(text);
+        osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
+        osg::ref_ptr<UsageScenario> s = scenarioOf(rr, label);
+        std::ostringstream out;
+        osg::ref_ptr<osgDB::Options> binary = new osgDB::Options;
+        binary->setPluginStringData("fileType", "Binary");
+        if (!rw.writeObject(*s, out, binary.get()).success())
+            return "Ecannot read scenario file '" + label + "': cannot convert it to the binary format";
+        return "S" + out.str();
+    }
+    catch (const std::exception& e)
+    {
+        return std::string("E") + e.what();
+    }
+}
+} // namespace detail
 
 osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, const std::string& label)
 {
@@ -473,13 +654,10 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, c
         const std::string problem = checkAsciiStructure(data);
         if (!problem.empty()) throw ScenarioError("malformed scenario file '" + label + "': " + problem);
     }
-    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
-    if (!rw) throw ScenarioError("no osgDB reader for scenario files (is the osg2 plugin installed?)");
-    // The serializer plugin must be loaded before the fork, so that the child has it.
-    osgDB::Registry::instance()->getObjectWrapperManager()->findWrapper("osgLoA::UsageScenario");
-    if (ascii || xml) return readTextInChild(*rw, data, label);
+    osgDB::ReaderWriter& rw = scenarioReaderWriter();
+    if (ascii || xml) return readTextOutOfProcess(rw, data, label);
     std::istringstream in(data);
-    osgDB::ReaderWriter::ReadResult rr = rw->readObject(in);
+    osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
     return scenarioOf(rr, label);
 }
 
