@@ -20,8 +20,10 @@ struct Row
 /** The demo city (default CityParameters), generated once per process. */
 osg::ref_ptr<osg::Node> demoCity();
 
-/** An offscreen renderer of `scene` at w x h with `samples` MSAA samples, from the 'oblique' camera. */
-osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene);
+/** An offscreen renderer of `scene` at w x h with `samples` MSAA samples, from a named camera
+ *  of the demo city (docs/demo-city.md). */
+osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene,
+                                                     const std::string& camera = "oblique");
 
 /** `scene` under a group with the project's loa_plain program (textured, lit): plain rendering. */
 osg::ref_ptr<osg::Group> withPlainProgram(osg::Node* scene);
@@ -43,7 +45,8 @@ std::vector<Row> distanceField(unsigned frames, std::string& renderer);
  *  1..4 routing passes: frame time against the error to the CPU reference of all K fragments. */
 std::vector<Row> abuffer(unsigned frames, std::string& renderer);
 
-/** Case "transitions" (BenchTransitions.cpp): paper 004's Table 1 on the demo city from the
- *  oblique camera at 800x600, 1280x720 and 1920x1080: plain rendering, one homogeneous style
- *  through the LoA pipeline, and every library scenario. */
+/** Case "transitions" (BenchTransitions.cpp): paper 004's Table 1 on the demo city at 800x600,
+ *  1280x720 and 1920x1080: plain rendering, homogeneous styles through the LoA pipeline and
+ *  every library scenario from the oblique camera; plain, homogeneous and view distance from
+ *  the street camera. */
 std::vector<Row> transitions(unsigned frames, std::string& renderer);

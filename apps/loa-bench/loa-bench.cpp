@@ -72,10 +72,12 @@ cases:
                  controlled depth complexity, for N samples and a maximum of routing passes:
                  ms per frame; error_mean / error_max = mean / max |difference| to the CPU
                  reference compositor, 0..255
-  transitions    paper 004's Table 1 on the demo city from the oblique camera at 800x600,
-                 1280x720 and 1920x1080: plain rendering (loa_plain), one homogeneous style
-                 through the LoA pipeline, and each library scenario; error = fraction of
-                 pixels whose fragments did not all fit the A-buffer
+  transitions    paper 004's Table 1 on the demo city at 800x600, 1280x720 and 1920x1080:
+                 from the oblique camera plain rendering (loa_plain), one homogeneous style
+                 (photorealistic, cartographic) through the LoA pipeline and each library
+                 scenario; from the street camera plain, both homogeneous styles and the
+                 view-distance scenario (whose three levels all show there); error = fraction
+                 of pixels whose fragments did not all fit the A-buffer
 
 options:
   --case NAME    run this case (repeatable; default: all)
@@ -337,7 +339,8 @@ osg::ref_ptr<osg::Node> demoCity()
     return city;
 }
 
-osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene)
+osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, osg::Node* scene,
+                                                     const std::string& camera)
 {
     osgLoA::OffscreenRenderer::Settings s;
     s.width = w;
@@ -346,7 +349,7 @@ osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, 
     osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
     r->setSceneData(scene);
     loa::CameraChoice cam;
-    cam.name = "oblique";
+    cam.name = camera;
     loa::applyCamera(*r, cam);
     return r;
 }
