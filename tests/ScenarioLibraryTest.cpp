@@ -214,7 +214,7 @@ TEST(ScenarioLibraryTest, TextFilesAreReadWhileOtherThreadsHoldLocks)
 {
     const std::string route = std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt";
     const std::size_t configurations = ScenarioLibrary::createBuiltin("route")->getConfigurations().size();
-    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest/threads");
+    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest-threads");
     std::string bad = textOf(route);
     bad.replace(bad.find("Kind REGION"), 11, "Kind LOUDNESS");
     std::ofstream(dir + "/bad-kind.osgt") << bad;
@@ -287,7 +287,7 @@ TEST(ScenarioLibraryTest, LargeTextFilesGoThroughWhole)
 TEST(ScenarioLibraryTest, AMissingHelperIsAClearError)
 {
     const std::string route = std::string(LOA_SOURCE_DIR) + "/data/scenarios/route.osgt";
-    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest/helper");
+    const std::string dir = loatest::freshDirectory("ScenarioLibraryTest-helper");
     ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgb");
     {
         ScopedEnvironment env("OSGLOA_SCENARIO_PARSER", dir + "/no-such-helper");
