@@ -114,6 +114,7 @@ struct Atlas
 {
     GLuint texture = 0;
     int width = 0, height = 0;
+    bool owned = true;
 };
 } // namespace
 
@@ -300,11 +301,26 @@ unsigned GpuFilterEngine::createAtlas(int width, int height)
     return id;
 }
 
+unsigned GpuFilterEngine::adoptAtlas(unsigned textureName, int width, int height)
+{
+    if (textureName == 0 || width <= 0 || height <= 0)
+        throw GpuFilterError("GpuFilterEngine: cannot adopt texture " + std::to_string(textureName) + " of size " +
+                             std::to_string(width) + "x" + std::to_string(height));
+    Atlas a;
+    a.texture = textureName;
+    a.width = width;
+    a.height = height;
+    a.owned = false;
+    const unsigned id = _impl->nextAtlas++;
+    _impl->atlases[id] = a;
+    return id;
+}
+
 void GpuFilterEngine::destroyAtlas(unsigned atlas)
 {
     auto it = _impl->atlases.find(atlas);
     if (it == _impl->atlases.end()) return;
-    glDeleteTextures(1, &it->second.texture);
+    if (it->second.owned) glDeleteTextures(1, &it->second.texture);
     _impl->atlases.erase(it);
     for (auto s = _impl->scratch.begin(); s != _impl->scratch.end();)
     {
@@ -607,7 +623,7 @@ FilterImage GpuFilterEngine::filter(const ImageFilter& f, const FilterImage& ima
 void GpuFilterEngine::releaseGLObjects()
 {
     for (auto& a : _impl->atlases)
-        glDeleteTextures(1, &a.second.texture);
+        if (a.second.owned) glDeleteTextures(1, &a.second.texture);
     _impl->atlases.clear();
     _impl->scratch.clear();
     for (auto& p : _impl->programs)
