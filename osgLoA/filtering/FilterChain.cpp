@@ -1,6 +1,8 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/filtering/FilterChain>
 
+#include <stdexcept>
+
 namespace osgLoA
 {
 
@@ -44,6 +46,16 @@ bool FilterChain::isInteractive() const
     for (const osg::ref_ptr<ImageFilter>& f : _filters)
         if (!f->isInteractive()) return false;
     return true;
+}
+
+void FilterChain::checkParameters() const
+{
+    if (_filters.empty()) throw std::invalid_argument("chain: no filters");
+    for (std::size_t i = 0; i < _filters.size(); ++i)
+    {
+        if (!_filters[i]) throw std::invalid_argument("chain: filter " + std::to_string(i) + " is missing");
+        _filters[i]->checkParameters();
+    }
 }
 
 std::string FilterChain::getChainString() const

@@ -304,8 +304,8 @@ unsigned GpuFilterEngine::createAtlas(int width, int height)
 unsigned GpuFilterEngine::adoptAtlas(unsigned textureName, int width, int height)
 {
     if (textureName == 0 || width <= 0 || height <= 0)
-        throw GpuFilterError("GpuFilterEngine: cannot adopt texture " + std::to_string(textureName) + " of size " +
-                             std::to_string(width) + "x" + std::to_string(height));
+        throw GpuFilterError("GpuFilterEngine: cannot adopt texture " + std::to_string(textureName) +
+                             " of size " + std::to_string(width) + "x" + std::to_string(height));
     Atlas a;
     a.texture = textureName;
     a.width = width;
@@ -430,6 +430,14 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
                                                unsigned destination, const std::vector<Region>& regions,
                                                const std::vector<Tile>* tiles, TileCache* cache)
 {
+    try
+    {
+        filter.checkParameters();
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw GpuFilterError(std::string("GpuFilterEngine: ") + e.what());
+    }
     const std::vector<GpuFilterPass> passes = filter.gpuPasses();
     if (passes.empty())
         throw GpuFilterError("GpuFilterEngine: filter '" + filter.filterName() +

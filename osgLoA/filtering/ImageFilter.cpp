@@ -97,6 +97,17 @@ void ImageFilter::setParameter(const std::string& name, const std::string& value
     setParameter(name, 0.0); // throws the unknown-parameter error
 }
 
+void ImageFilter::checkParameters() const
+{
+    for (const FilterParameter& p : const_cast<ImageFilter*>(this)->parameters())
+    {
+        const double v = p.get();
+        if (!std::isfinite(v) || v < p.minimum || v > p.maximum)
+            throw std::invalid_argument(filterName() + ": parameter " + p.name + " = " + formatValue(p, v) +
+                                        " is not " + rangeText(p));
+    }
+}
+
 std::string ImageFilter::getParameterString() const
 {
     std::ostringstream s;
