@@ -10,7 +10,9 @@
 //     rendered frame): its rectangle in the atlas (x, y, width, height) and wrap modes
 //     (0 repeat, 1 clamp, 2 mirror, as osgLoA::WrapMode); all atlases of a run share the layout;
 //   - SSBO 1: the work list: (region, tile x, tile y, -) per work group (8x8 texel tiles), or
-//     (region, first line / 64, -, -) per work group of 64 lines for LOA_LINES passes.
+//     (region, first line / 64, -, -) per work group of 64 lines for LOA_LINES passes;
+//   - LOA_INTERIOR = 1 for the variant that runs tiles whose reads stay inside the region
+//     (within the pass's radius + 1), so loa_fetchN need not wrap.
 // TEXELS passes define vec4 loa_filterTexel(ivec2 p) for texel p of the current region (0-based,
 // inside the region); the engine stores the result. LINES passes (LOA_LINES = 1 rows, 2 columns)
 // define void loa_filterLine(int line) and store with loa_store. Inputs are read with
@@ -61,11 +63,18 @@ int loa_wrapIndex(int i, int n, int mode)
 }
 
 ivec2 loa_size() { return loa_rect.zw; }
+#if defined(LOA_INTERIOR) && LOA_INTERIOR == 1
+// The engine dispatches tiles whose reads all lie inside their region (the tile dilated by the
+// pass's radius + 1) with this variant: no wrap arithmetic (llvmpipe runs a Gaussian pass about
+// 3x faster without it; docs/filtering.md).
+ivec2 loa_wrapped(ivec2 p) { return loa_rect.xy + p; }
+#else
 ivec2 loa_wrapped(ivec2 p)
 {
     return loa_rect.xy + ivec2(loa_wrapIndex(p.x, loa_rect.z, loa_wrapMode.x),
                                loa_wrapIndex(p.y, loa_rect.w, loa_wrapMode.y));
 }
+#endif
 
 vec4 loa_fetch0(ivec2 p) { return imageLoad(loa_in0, loa_wrapped(p)); }
 vec4 loa_fetch1(ivec2 p) { return imageLoad(loa_in1, loa_wrapped(p)); }

@@ -50,3 +50,12 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer);
  *  every library scenario from the oblique camera; plain, homogeneous and view distance from
  *  the street camera. */
 std::vector<Row> transitions(unsigned frames, std::string& renderer);
+
+/** Case "filters" (BenchFilters.cpp): each image filter on a 512x512 texture: our GPU passes, our
+ *  CPU reference and OpenCV's implementation where it has one (built with OpenCV only). */
+std::vector<Row> filters(unsigned frames, std::string& renderer);
+
+/** Case "preprocess" (BenchFilters.cpp): paper 004 §3.1's pre-process (bilateral then DoG on every
+ *  mip level of 1,520 textures of 128x128) as textures per second: OpenCV, our GPU passes, our CPU
+ *  references on all cores, and the flow-based version on the GPU. */
+std::vector<Row> preprocess(unsigned frames, std::string& renderer);

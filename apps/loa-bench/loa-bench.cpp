@@ -78,6 +78,12 @@ cases:
                  scenario; from the street camera plain, both homogeneous styles and the
                  view-distance scenario (whose three levels all show there); error = fraction
                  of pixels whose fragments did not all fit the A-buffer
+  filters        each image filter of paper 000 on a 512x512 texture: our GPU passes, our
+                 CPU reference, OpenCV's implementation where it has one; error = ours
+                 against OpenCV (8-bit units)
+  preprocess     paper 004's pre-process, bilateral then DoG on every mip level of 1,520
+                 textures of 128x128, as textures per second: OpenCV, our GPU, our CPU on all
+                 cores, and the flow-based version on the GPU
 
 options:
   --case NAME    run this case (repeatable; default: all)
@@ -374,7 +380,9 @@ int main(int argc, char** argv)
                                                                {"interest", interest},
                                                                {"distance-field", distanceField},
                                                                {"abuffer", abuffer},
-                                                               {"transitions", transitions}};
+                                                               {"transitions", transitions},
+                                                               {"filters", filters},
+                                                               {"preprocess", preprocess}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int

@@ -159,15 +159,16 @@ struct GpuFilterEngine::Impl
         return sh;
     }
 
-    GLuint program(const GpuFilterPass& pass)
+    GLuint program(const GpuFilterPass& pass, bool interior)
     {
-        std::string key = pass.shader;
+        std::string key = pass.shader + (interior ? "|interior" : "");
         for (const auto& kv : pass.defines)
             key += "|" + kv.first + "=" + kv.second;
         if (pass.dispatch != GpuFilterPass::TEXELS) key += "|lines=" + std::to_string(int(pass.dispatch));
         auto it = programs.find(key);
         if (it != programs.end()) return it->second;
         std::vector<std::pair<std::string, std::string>> defines = pass.defines;
+        if (interior) defines.push_back({"LOA_INTERIOR", "1"});
         if (pass.dispatch != GpuFilterPass::TEXELS)
             defines.push_back({"LOA_LINES", pass.dispatch == GpuFilterPass::ROWS ? "1" : "2"});
         const std::string common = ShaderLibrary::getSource("loa_filter_common.comp.glsl").text;
@@ -530,11 +531,15 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
     outputs[P - 1] = destination;
 
     RunStats stats;
-    std::vector<GLuint> work;
+    std::vector<GLuint> work, interiorWork;
     for (std::size_t k = 0; k < P; ++k)
     {
         const GpuFilterPass& pass = passes[k];
         work.clear();
+        interiorWork.clear();
+        // A tile whose reads (radius + 1 for bilinear samples) stay inside its region runs the
+        // variant without wrap arithmetic.
+        const int margin = pass.radius + 1;
         std::size_t texels = 0;
         for (std::size_t r = 0; r < regions.size(); ++r)
         {
@@ -553,7 +558,11 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
                     for (int i = 0; i < reg.tilesX(); ++i)
                         if (m[std::size_t(j * reg.tilesX() + i)])
                         {
-                            work.insert(work.end(), {GLuint(r), GLuint(i), GLuint(j), 0u});
+                            const bool inside =
+                                pass.radius >= 0 && i * TILE - margin >= 0 && j * TILE - margin >= 0 &&
+                                (i + 1) * TILE + margin <= reg.width && (j + 1) * TILE + margin <= reg.height;
+                            std::vector<GLuint>& list = inside ? interiorWork : work;
+                            list.insert(list.end(), {GLuint(r), GLuint(i), GLuint(j), 0u});
                             texels += std::size_t(std::min(TILE, reg.width - i * TILE) *
                                                   std::min(TILE, reg.height - j * TILE));
                         }
@@ -566,15 +575,8 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
                 texels += std::size_t(reg.width) * std::size_t(reg.height);
             }
         }
-        const std::size_t items = work.size() / 4;
+        const std::size_t items = (work.size() + interiorWork.size()) / 4;
         if (items == 0) continue;
-        const GLuint prog = _impl->program(pass);
-        ext->glUseProgram(prog);
-        _impl->setUniforms(prog, pass);
-        ext->glUniform1ui(ext->glGetUniformLocation(prog, "loa_workCount"), GLuint(items));
-        ext->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, _impl->regionBuffer);
-        _impl->bindBuffer(_impl->workBuffer, 1, work.data(), work.size() * sizeof(GLuint),
-                          &_impl->workCapacity);
         for (GLuint unit = 0; unit < 4; ++unit)
         {
             const int in = unit < pass.inputs.size() ? pass.inputs[unit] : pass.inputs[0];
@@ -584,12 +586,25 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
         }
         ext->glBindImageTexture(4, _impl->atlas(outputs[k]).texture, 0, GL_FALSE, 0, GL_READ_WRITE,
                                 GL_RGBA32F_ARB);
-        const GLuint gx = GLuint(std::min<std::size_t>(items, 65535));
-        const GLuint gy = GLuint((items + gx - 1) / gx);
-        ext->glDispatchCompute(gx, gy, 1);
-        ext->glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                             GL_SHADER_STORAGE_BARRIER_BIT);
-        ++stats.passes;
+        for (int variant = 0; variant < 2; ++variant)
+        {
+            const std::vector<GLuint>& list = variant == 0 ? interiorWork : work;
+            const std::size_t n = list.size() / 4;
+            if (n == 0) continue;
+            const GLuint prog = _impl->program(pass, variant == 0);
+            ext->glUseProgram(prog);
+            _impl->setUniforms(prog, pass);
+            ext->glUniform1ui(ext->glGetUniformLocation(prog, "loa_workCount"), GLuint(n));
+            ext->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, _impl->regionBuffer);
+            _impl->bindBuffer(_impl->workBuffer, 1, list.data(), list.size() * sizeof(GLuint),
+                              &_impl->workCapacity);
+            const GLuint gx = GLuint(std::min<std::size_t>(n, 65535));
+            const GLuint gy = GLuint((n + gx - 1) / gx);
+            ext->glDispatchCompute(gx, gy, 1);
+            ext->glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                                 GL_SHADER_STORAGE_BARRIER_BIT);
+            ++stats.passes;
+        }
         stats.tiles += items;
         stats.texels += texels;
         if (k + 1 == P) stats.outputTexels = texels;
