@@ -1,5 +1,5 @@
 #version 430
-// The structure tensor and edge tangent flow (osgLoA::StructureTensor; Kyprianidis & Döllner
+// The structure tensor and edge tangent flow (osgLoA::StructureTensor; Kyprianidis & Doellner
 // 2008 §3). LOA_TENSOR_STAGE 0: per-channel Sobel derivatives normalized by 1/8 (the derivative
 // per texel), the tensor (E, F, G, 0) = sum over RGB of (fx.fx, fx.fy, fy.fy); stage 1: from a
 // (smoothed) tensor, the flow (t.x, t.y, A, phi): t the unit minor eigenvector (edge tangent)
