@@ -59,3 +59,8 @@ std::vector<Row> filters(unsigned frames, std::string& renderer);
  *  mip level of 1,520 textures of 128x128) as textures per second: OpenCV, our GPU passes, our CPU
  *  references on all cores, and the flow-based version on the GPU. */
 std::vector<Row> preprocess(unsigned frames, std::string& renderer);
+
+/** Case "filtering" (BenchFiltering.cpp): paper 000's Table 1 on the demo city along a fixed
+ *  fly-through at 800x600, 1280x720 and 1920x1080: setups 1-3 of deferred texturing and setup 4
+ *  (post-process filtering) with the anisotropic Kuwahara filter, caches cleared per run. */
+std::vector<Row> filtering(unsigned frames, std::string& renderer);

@@ -165,7 +165,7 @@ std::vector<Row> filters(unsigned frames, std::string& renderer)
          [](const cv::Mat& s, cv::Mat& d) { cv::GaussianBlur(s, d, cv::Size(13, 13), 2.0, 2.0, cv::BORDER_REFLECT); }
 #endif
         },
-        {"bilateral:sigma_d=3,sigma_r=0.1",
+        {"bilateral:sigma_d=3,sigma_r=0.1,range_norm=l1",
 #ifdef LOA_HAVE_OPENCV
          [](const cv::Mat& s, cv::Mat& d) { cv::bilateralFilter(s, d, 13, 25.5, 3.0, cv::BORDER_REFLECT); }
 #endif
@@ -328,7 +328,7 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer)
     };
 
     // The plain pre-process: bilateral, then DoG (paper 004 §3.1).
-    const std::string plainSpec = "bilateral:sigma_d=2,sigma_r=0.1+dog:sigma_e=1";
+    const std::string plainSpec = "bilateral:sigma_d=2,sigma_r=0.1,range_norm=l1+dog:sigma_e=1,flow=0";
     const std::string flowSpec = "flow_bilateral+dog:sigma_e=1,flow=1";
 #ifdef LOA_HAVE_OPENCV
     {

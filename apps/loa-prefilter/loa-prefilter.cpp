@@ -1,0 +1,481 @@
+// loa-prefilter: pre-filters every 2D texture of a model level by level (paper 000 Eq. 2; paper
+// 004 §3.1: "the input textures are first converted to mip maps, and then processed for each
+// level separately ... once per model") into the filter cache, and can write the model with
+// the filtered textures.
+#include "../common/AppSupport.h"
+
+#include <osgLoA/filtering/FilterCache>
+#include <osgLoA/filtering/FilterRegistry>
+#include <osgLoA/filtering/GpuFilterEngine>
+#include <osgLoA/filtering/MipmapFilter>
+#include <osgLoA/render/HeadlessContext>
+#include <osgLoA/util/AtomicFile>
+#include <osgLoA/util/StateSetVisitor>
+
+#include <osg/Texture2D>
+#include <osgDB/FileNameUtils>
+#include <osgDB/ReadFile>
+#include <osgDB/Registry>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+namespace
+{
+const char* kHelp = R"(usage: loa-prefilter MODEL --filter NAME[:key=value,...] --out DIR [options]
+
+Loads MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, demo.loacity ...), collects
+the image of every 2D texture, and filters each one level by level: the image's mip pyramid
+(area-weighted 2x box downsampling to 1x1) is built and every level is filtered separately,
+with the texture's wrap modes at its borders (paper 000 Eq. 2). The filtered pyramids are
+stored in the filter cache DIR, where MipmapFilter (and so the viewer) finds them; images
+already there are not filtered again. Textures with the same pixels and wrap modes are one
+image. The work is spread over threads, and over machines with --shard.
+
+options:
+  --filter SPEC         the filter: NAME or NAME:key=value,... or a chain A+B (see the list
+                        below; parameters as docs/filtering.md)
+  --out DIR             the filter cache directory (created if missing)
+  --jobs N              worker threads (default: all cores)
+  --shard I/N           filter only shard I of N (I = 0..N-1): the images, sorted by their
+                        cache key, are dealt out in turn; shards 0/N .. N-1/N together do
+                        exactly what one run without --shard does
+  --export FILE         write the model with the filtered textures (each image carrying its
+                        filtered mip levels) to FILE, atomically; FILE must be .osgb (which
+                        keeps the levels; the tool reads it back to check). Not with --shard.
+  --gpu                 filter on the GPU (headless EGL) when the filter has GPU passes
+  --max-size N          skip images wider or taller than N texels (default 8192)
+  -O TEXT, --options TEXT
+                        reader options for MODEL (e.g. "seed=3 blocksX=4" for demo.loacity)
+  --list-filters        print the registered filters and exit
+  --version, --help
+
+Progress goes to stderr: a bar (images done/total, rate, ETA) when stderr is a terminal, one
+line per image otherwise. Unreadable images (corrupt or missing files, 0x0 images, sizes above
+--max-size, formats a filter cannot read: compressed, packed, 3D) are reported by name and
+skipped. The last line counts the images filtered, found in the cache and skipped.
+
+exit status: 0 every image filtered or cached, 1 the model could not be read, the cache could
+not be written or the export failed, 2 bad arguments, 3 no usable EGL/OpenGL context (--gpu),
+4 some images were skipped (the others are done).
+)";
+
+constexpr int kSkipped = 4;
+
+struct Options
+{
+    std::string model, filter, out, exportPath, readerOptions;
+    unsigned jobs = 0, shardIndex = 0, shardCount = 1, maxSize = 8192;
+    bool gpu = false, haveShard = false;
+};
+
+void parseShard(const std::string& text, Options& o)
+{
+    const std::size_t slash = text.find('/');
+    const auto digits = [](const std::string& s)
+    { return !s.empty() && s.size() <= 6 && s.find_first_not_of("0123456789") == std::string::npos; };
+    if (slash == std::string::npos || !digits(text.substr(0, slash)) || !digits(text.substr(slash + 1)))
+        throw loa::UsageError("--shard '" + text + "' is not I/N (e.g. 0/4)");
+    o.shardIndex = unsigned(std::stoul(text.substr(0, slash)));
+    o.shardCount = unsigned(std::stoul(text.substr(slash + 1)));
+    if (o.shardCount < 1) throw loa::UsageError("--shard '" + text + "': N must be at least 1");
+    if (o.shardIndex >= o.shardCount)
+        throw loa::UsageError("--shard '" + text + "': I must be in 0.." + std::to_string(o.shardCount - 1) +
+                              " (shards are numbered from 0)");
+    o.haveShard = true;
+}
+
+Options parse(int argc, char** argv)
+{
+    Options o;
+    loa::Args args(argc, argv);
+    if (args.empty()) throw loa::UsageError("no MODEL given (see --help)");
+    while (!args.empty())
+    {
+        const std::string a = args.next();
+        loa::exitOnHelpOrVersion(a, "loa-prefilter", kHelp);
+        if (a == "--filter")
+            o.filter = args.value(a);
+        else if (a == "--out")
+            o.out = args.value(a);
+        else if (a == "--jobs")
+        {
+            o.jobs = loa::parseCount(a, args.value(a), 1024);
+            if (o.jobs == 0) throw loa::UsageError("--jobs must be at least 1");
+        }
+        else if (a == "--shard")
+            parseShard(args.value(a), o);
+        else if (a == "--export")
+            o.exportPath = args.value(a);
+        else if (a == "--gpu")
+            o.gpu = true;
+        else if (a == "--max-size")
+        {
+            o.maxSize = loa::parseCount(a, args.value(a), unsigned(osgLoA::FilterImage::maxDimension()));
+            if (o.maxSize == 0) throw loa::UsageError("--max-size must be at least 1");
+        }
+        else if (a == "-O" || a == "--options")
+            o.readerOptions += (o.readerOptions.empty() ? "" : " ") + args.value(a);
+        else if (a == "--list-filters")
+        {
+            for (const std::string& n : osgLoA::FilterRegistry::names())
+                std::cout << n << "  " << osgLoA::FilterRegistry::description(n) << "\n";
+            std::exit(loa::kOk);
+        }
+        else if (!a.empty() && a[0] == '-')
+            throw loa::UsageError("unknown option '" + a + "' (see --help)");
+        else if (o.model.empty())
+            o.model = a;
+        else
+            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+    }
+    if (o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
+    if (o.filter.empty()) throw loa::UsageError("--filter is required (see --list-filters)");
+    if (o.out.empty()) throw loa::UsageError("--out DIR is required (the filter cache directory)");
+    if (!o.exportPath.empty())
+    {
+        if (osgDB::getLowerCaseFileExtension(o.exportPath) != "osgb")
+            throw loa::UsageError("--export '" + o.exportPath +
+                                  "' must name an .osgb file (the format that keeps the mip levels)");
+        if (o.shardCount > 1)
+            throw loa::UsageError("--export needs every image: run it without --shard (after the shards, "
+                                  "the images come from the cache)");
+    }
+    return o;
+}
+
+/** One distinct image (pixels + wrap modes) and the textures that use it. */
+struct Unit
+{
+    osgLoA::FilterCacheKey key;
+    std::string label;
+    osg::ref_ptr<osg::Image> image;
+    osgLoA::ImageBorder border;
+    std::vector<osg::ref_ptr<osg::Texture2D>> textures;
+    std::string problem; // non-empty: skipped before any work
+};
+
+std::string labelOf(const osg::Texture2D& texture, std::size_t index)
+{
+    const osg::Image* image = texture.getImage();
+    if (image && !image->getFileName().empty()) return image->getFileName();
+    if (image && !image->getName().empty()) return image->getName();
+    if (!texture.getName().empty()) return "texture '" + texture.getName() + "'";
+    return "texture #" + std::to_string(index + 1) + " (unnamed)";
+}
+
+std::string sizeText(const osg::Image& image)
+{
+    return std::to_string(image.s()) + "x" + std::to_string(image.t());
+}
+
+std::string seconds(double s)
+{
+    char b[32];
+    if (s < 60)
+        std::snprintf(b, sizeof b, "%.1f s", s);
+    else if (s < 3600)
+        std::snprintf(b, sizeof b, "%dm%02ds", int(s) / 60, int(s) % 60);
+    else
+        std::snprintf(b, sizeof b, "%dh%02dm", int(s) / 3600, int(s) / 60 % 60);
+    return b;
+}
+
+/** Progress on stderr: a redrawn bar on a terminal, one line per image otherwise. */
+class Progress
+{
+public:
+    explicit Progress(std::size_t total) : _total(total), _tty(::isatty(2) == 1), _start(clock::now()) {}
+
+    /** One image done; `line` describes it. Messages (skips) always print on their own line. */
+    void done(const std::string& line, bool message)
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        ++_done;
+        if (!_tty)
+        {
+            std::cerr << "loa-prefilter: [" << _done << "/" << _total << "] " << line << "\n";
+            return;
+        }
+        if (message)
+            std::cerr << "\r\033[K"
+                      << "loa-prefilter: " << line << "\n";
+        const auto now = clock::now();
+        if (_done == _total || message || now - _lastDraw > std::chrono::milliseconds(100))
+        {
+            draw(now);
+            _lastDraw = now;
+        }
+    }
+    void finish()
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        if (_tty && _total > 0) std::cerr << "\n";
+    }
+    double elapsed() const { return std::chrono::duration<double>(clock::now() - _start).count(); }
+
+private:
+    using clock = std::chrono::steady_clock;
+    void draw(clock::time_point now)
+    {
+        const double t = std::chrono::duration<double>(now - _start).count();
+        const double rate = t > 0 ? double(_done) / t : 0.0;
+        const int width = 30;
+        const int filled = _total ? int(double(width) * double(_done) / double(_total)) : width;
+        std::string bar(std::size_t(filled), '#');
+        bar.resize(std::size_t(width), '.');
+        char b[160];
+        std::snprintf(b, sizeof b, "[%s] %zu/%zu images, %.1f/s, ETA %s", bar.c_str(), _done, _total, rate,
+                      rate > 0 ? seconds(double(_total - _done) / rate).c_str() : "?");
+        std::cerr << "\r\033[K" << b << std::flush;
+    }
+    std::mutex _mutex;
+    std::size_t _total, _done = 0;
+    bool _tty;
+    clock::time_point _start, _lastDraw;
+};
+
+int run(const Options& o)
+{
+    osg::ref_ptr<osgLoA::ImageFilter> filter;
+    try
+    {
+        filter = osgLoA::FilterRegistry::create(o.filter);
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw loa::UsageError(std::string("--filter: ") + e.what());
+    }
+    const std::string parameters = filter->getParameterString();
+
+    osg::ref_ptr<osgLoA::FilterCache> cache = new osgLoA::FilterCache(o.out);
+    cache->checkWritable();
+
+    // Reader options: the user's, plus ForceReadingImage for OSG's own formats, so that an
+    // image file that cannot be read leaves an empty image carrying its name (reported below)
+    // instead of vanishing.
+    const std::string ext = osgDB::getLowerCaseFileExtension(o.model);
+    std::string optionString = o.readerOptions;
+    if (ext == "osgb" || ext == "osgt" || ext == "osgx")
+        optionString += (optionString.empty() ? "" : " ") + std::string("ForceReadingImage");
+    if (!optionString.empty())
+    {
+        osg::ref_ptr<osgDB::Options> options =
+            osgDB::Registry::instance()->getOptions()
+                ? static_cast<osgDB::Options*>(
+                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
+                : new osgDB::Options;
+        options->setOptionString(optionString);
+        osgDB::Registry::instance()->setOptions(options.get());
+    }
+    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);
+
+    // Every distinct osg::Texture2D, in traversal order.
+    std::vector<osg::ref_ptr<osg::Texture2D>> textures;
+    std::set<osg::Texture*> seen;
+    std::size_t otherTextures = 0;
+    osgLoA::StateSetVisitor visitor(
+        [&](osg::StateSet& ss)
+        {
+            for (const osg::StateSet::AttributeList& unit : ss.getTextureAttributeList())
+                for (const auto& entry : unit)
+                {
+                    osg::Texture* t = dynamic_cast<osg::Texture*>(entry.second.first.get());
+                    if (!t || !seen.insert(t).second) continue;
+                    if (osg::Texture2D* t2 = dynamic_cast<osg::Texture2D*>(t))
+                        textures.push_back(t2);
+                    else
+                        ++otherTextures;
+                }
+        });
+    scene->accept(visitor);
+
+    // Distinct images: valid ones by cache key (pixels, wrap modes, filter), sorted by key;
+    // unusable ones by name, after them.
+    std::map<osgLoA::FilterCacheKey, Unit> byKey;
+    std::vector<Unit> problems;
+    for (std::size_t i = 0; i < textures.size(); ++i)
+    {
+        osg::Texture2D* t = textures[i].get();
+        Unit u;
+        u.label = labelOf(*t, i);
+        u.image = t->getImage();
+        u.border = osgLoA::ImageBorder::of(*t);
+        u.textures.push_back(t);
+        if (!u.image)
+            u.problem = "has no image (its file could not be read?)";
+        else if (u.image->s() <= 0 || u.image->t() <= 0 || !u.image->data())
+            u.problem = "is empty (" + sizeText(*u.image) + "): its file is missing, corrupt or unreadable";
+        else if (unsigned(u.image->s()) > o.maxSize || unsigned(u.image->t()) > o.maxSize)
+            u.problem = "is " + sizeText(*u.image) + ", above --max-size " + std::to_string(o.maxSize);
+        if (!u.problem.empty())
+        {
+            problems.push_back(u);
+            continue;
+        }
+        u.key = osgLoA::FilterCache::makeKey(osgLoA::FilterCache::imageHash(*u.image), u.border, parameters);
+        auto it = byKey.find(u.key);
+        if (it == byKey.end())
+            byKey.emplace(u.key, u);
+        else
+            it->second.textures.push_back(t);
+    }
+    std::stable_sort(problems.begin(), problems.end(),
+                     [](const Unit& a, const Unit& b) { return a.label < b.label; });
+    std::vector<Unit> all;
+    for (auto& kv : byKey)
+        all.push_back(kv.second);
+    all.insert(all.end(), problems.begin(), problems.end());
+    std::vector<Unit> units;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (i % o.shardCount == o.shardIndex) units.push_back(all[i]);
+
+    // GPU: one context and engine, used from this thread only.
+    osg::ref_ptr<osgLoA::HeadlessContext> context;
+    osg::ref_ptr<osgLoA::GpuFilterEngine> engine;
+    const bool onGpu = o.gpu && filter->hasGpuImplementation();
+    if (o.gpu && !onGpu)
+        std::cerr << "loa-prefilter: note: filter '" << filter->filterName()
+                  << "' has no GPU implementation; filtering on the CPU\n";
+    if (onGpu)
+    {
+        context = new osgLoA::HeadlessContext;
+        if (!context->realize() || !context->makeCurrent())
+            throw osgLoA::HeadlessContextError("cannot make the headless EGL context current");
+        try
+        {
+            engine = new osgLoA::GpuFilterEngine(*context->getState());
+        }
+        catch (const osgLoA::GpuFilterError& e)
+        {
+            throw osgLoA::HeadlessContextError(e.what());
+        }
+    }
+
+    const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned workers = onGpu ? 1u : std::max(1u, std::min<unsigned>(jobs, unsigned(units.size())));
+    osg::ref_ptr<osgLoA::MipmapFilter> mipmapFilter = new osgLoA::MipmapFilter(filter.get(), cache.get());
+    mipmapFilter->setNumThreads(std::max(1u, jobs / workers));
+    mipmapFilter->setEngine(engine.get());
+
+    std::cerr << "loa-prefilter: " << o.model << ": " << textures.size() << " 2D textures, " << all.size()
+              << " distinct images";
+    if (otherTextures) std::cerr << " (" << otherTextures << " other textures ignored)";
+    if (o.shardCount > 1)
+        std::cerr << "; shard " << o.shardIndex << "/" << o.shardCount << ": " << units.size();
+    std::cerr << "; " << parameters << " on "
+              << (onGpu ? std::string("the GPU") : std::to_string(workers) + " thread(s)") << "\n";
+
+    Progress progress(units.size());
+    std::atomic<std::size_t> next{0}, filtered{0}, cached{0}, skipped{0}, storeFailures{0};
+    std::vector<osg::ref_ptr<osg::Image>> results(units.size());
+    auto work = [&]
+    {
+        for (std::size_t i = next++; i < units.size(); i = next++)
+        {
+            Unit& u = units[i];
+            if (!u.problem.empty())
+            {
+                ++skipped;
+                progress.done("skipped " + u.label + ": " + u.problem, true);
+                continue;
+            }
+            try
+            {
+                osgLoA::MipmapFilter::Result r;
+                osg::ref_ptr<osg::Image> pyramid = mipmapFilter->filterImage(*u.image, u.border, &r);
+                if (!o.exportPath.empty()) results[i] = pyramid;
+                char ms[32];
+                std::snprintf(ms, sizeof ms, "%.0f ms", r.milliseconds);
+                if (!r.storeError.empty())
+                {
+                    ++storeFailures;
+                    progress.done("not stored " + u.label + ": " + r.storeError, true);
+                }
+                else if (r.source == osgLoA::MipmapFilter::CACHE)
+                {
+                    ++cached;
+                    progress.done("cached " + u.label + " " + sizeText(*u.image) + " (" + ms + ")", false);
+                }
+                else
+                {
+                    ++filtered;
+                    progress.done("filtered " + u.label + " " + sizeText(*u.image) + " (" + ms + ")", false);
+                }
+            }
+            catch (const std::exception& e)
+            {
+                ++skipped;
+                // "MipmapFilter: image 'LABEL': FilterImage: REASON" -> "LABEL: REASON"
+                std::string why = e.what();
+                const std::string quoted = "'" + u.label + "': ";
+                const std::size_t at = why.find(quoted);
+                if (at != std::string::npos) why = why.substr(at + quoted.size());
+                if (why.compare(0, 13, "FilterImage: ") == 0) why = why.substr(13);
+                progress.done("skipped " + u.label + ": " + why, true);
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned i = 1; i < workers; ++i)
+        pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool)
+        t.join();
+    progress.finish();
+    if (engine.valid()) engine->releaseGLObjects();
+
+    if (!o.exportPath.empty())
+    {
+        std::size_t expected = 0;
+        for (std::size_t i = 0; i < units.size(); ++i)
+            if (results[i].valid())
+                for (auto& t : units[i].textures)
+                {
+                    osgLoA::MipmapFilter::applyPyramid(*t, results[i].get());
+                    if (results[i]->isMipmap()) ++expected;
+                }
+        osgLoA::AtomicFile::writeNode(o.exportPath, *scene);
+        // Read it back: the levels must have survived.
+        osg::ref_ptr<osg::Node> back = osgDB::readNodeFile(o.exportPath);
+        if (!back) throw std::runtime_error("cannot read back '" + o.exportPath + "'");
+        std::set<osg::Texture2D*> backTextures;
+        osgLoA::StateSetVisitor count(
+            [&](osg::StateSet& ss)
+            {
+                for (const osg::StateSet::AttributeList& unit : ss.getTextureAttributeList())
+                    for (const auto& entry : unit)
+                        if (osg::Texture2D* t = dynamic_cast<osg::Texture2D*>(entry.second.first.get()))
+                            if (t->getImage() && t->getImage()->isMipmap()) backTextures.insert(t);
+            });
+        back->accept(count);
+        if (backTextures.size() < expected)
+            throw std::runtime_error("'" + o.exportPath +
+                                     "' lost mip levels: " + std::to_string(backTextures.size()) + " of " +
+                                     std::to_string(expected) + " filtered textures read back with levels");
+        std::cerr << "loa-prefilter: wrote " << o.exportPath << " (" << expected
+                  << " textures with filtered levels)\n";
+    }
+
+    std::cerr << "loa-prefilter: " << units.size() << " images: " << filtered << " filtered, " << cached
+              << " cached, " << skipped << " skipped";
+    if (storeFailures) std::cerr << ", " << storeFailures << " not stored";
+    std::cerr << " in " << seconds(progress.elapsed()) << "; cache " << cache->getDirectory() << "\n";
+    if (storeFailures) return loa::kFailure;
+    return skipped ? kSkipped : loa::kOk;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+    return loa::runTool("loa-prefilter", [&] { return run(parse(argc, argv)); });
+}
