@@ -3,10 +3,15 @@
 // docs/styles.md): the surface colour (texture x vertex colour) colour-quantized per fragment
 // in Oklab (lightness to loa_abstract_levels levels, chroma down to a multiple of
 // loa_abstract_chromaStep, inside the sRGB gamut), lit softly. The CPU twin is
-// osgLoA::ColorQuantization; the two must compute the same function. Pre-filtered texture
-// mipmaps (the texture-filtering work) replace this quantization when they land.
+// osgLoA::ColorQuantization; the two must compute the same function.
+// Where the drawable's texture has per-level filtered mipmaps (paper 000 Eq. 2; bound on unit 3
+// by osgLoA::FilterConfiguration::apply, which sets loa_hasFilteredTexture), the style shows the
+// filtered texture instead, unquantized: the filter is the abstraction. The quantization remains
+// the fallback for textures without a filter.
 uniform sampler2D loa_baseTexture;
 uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
+layout(binding = 3) uniform sampler2D loa_filteredTexture; // FilterConfiguration's diffuse channel
+uniform bool loa_hasFilteredTexture = false; // a filtered texture is bound (FilterConfiguration)
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform int loa_abstract_levels = 5;
 uniform float loa_abstract_chromaStep = 0.05;
@@ -84,9 +89,14 @@ vec3 loa_abstract_quantize(vec3 srgb)
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
     vec4 base = color;
-    if (loa_hasTexture)
-        base *= texture(loa_baseTexture, texCoord);
     float ambient = loa_abstract_ambient;
     float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);
+    if (loa_hasTexture && loa_hasFilteredTexture)
+    {
+        base *= texture(loa_filteredTexture, texCoord);
+        return vec4(base.rgb * (ambient + (1.0 - ambient) * diffuse), base.a);
+    }
+    if (loa_hasTexture)
+        base *= texture(loa_baseTexture, texCoord);
     return vec4(loa_abstract_quantize(base.rgb) * (ambient + (1.0 - ambient) * diffuse), base.a);
 }

@@ -562,7 +562,7 @@ TEST(DoGFilterTest, ParametersRegistryAndErrors)
 {
     osg::ref_ptr<DoGFilter> dog = new DoGFilter;
     EXPECT_EQ(dog->getParameterString(),
-              "dog:sigma_e=1,k=1.60000002,tau=0.99000001,epsilon=0,phi=2,sigma_m=3,rho=2,flow=1,mode=edges");
+              "dog:sigma_e=1,k=1.6,tau=0.99,epsilon=0,phi=2,sigma_m=3,rho=2,flow=1,mode=edges");
     dog->setParameter("mode", "xdog");
     EXPECT_EQ(dog->getMode(), DoGFilter::XDOG);
     dog->setParameter("flow", 0.0);

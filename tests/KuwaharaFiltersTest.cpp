@@ -742,7 +742,7 @@ TEST(ShockFilterTest, ParametersRegistryAndValidation)
     EXPECT_EQ(s->getSigmaS(), 4.0f);
     EXPECT_FALSE(s->getAdaptive());
     EXPECT_EQ(f->getParameterString(), "shock:iterations=2,sigma_d=1,sigma_s=4,max_angle=22.5,adaptive=off,"
-                                       "sigma_i=1,sigma_g=1.5,tau_s=0.00499999989,radius=2,sigma_a=1.5");
+                                       "sigma_i=1,sigma_g=1.5,tau_s=0.005,radius=2,sigma_a=1.5");
     // Per iteration: tensor 3 + smoothing 1 + tensor 3 + luminance blur 2 + shock 1; final 1.
     EXPECT_EQ(f->gpuPasses().size(), 2u * 10u + 1u);
     s->setSigmaI(0.0f);

@@ -158,12 +158,12 @@ TEST(SmoothingFiltersTest, RegistryCreatesEveryFilterAndTheCanonicalStringRoundT
         EXPECT_EQ(FilterRegistry::create(canonical)->getParameterString(), canonical);
     }
     EXPECT_EQ(FilterRegistry::create("bilateral")->getParameterString(),
-              "bilateral:sigma_d=3,sigma_r=0.100000001,radius=0,color_space=rgb,range_norm=l2");
-    EXPECT_EQ(FilterRegistry::create("guided")->getParameterString(), "guided:radius=4,eps=0.00999999978");
+              "bilateral:sigma_d=3,sigma_r=0.1,radius=0,color_space=rgb,range_norm=l2");
+    EXPECT_EQ(FilterRegistry::create("guided")->getParameterString(), "guided:radius=4,eps=0.01");
     EXPECT_EQ(FilterRegistry::create("domain_transform")->getParameterString(),
               "domain_transform:sigma_s=30,sigma_r=0.25,iterations=3");
     EXPECT_EQ(FilterRegistry::create("l0")->getParameterString(),
-              "l0:lambda=0.0199999996,kappa=2,beta_max=100000");
+              "l0:lambda=0.02,kappa=2,beta_max=100000");
     EXPECT_EQ(FilterRegistry::create("quantize")->getParameterString(), "quantize:levels=8,phi_q=3");
 
     osg::ref_ptr<ImageFilter> b =

@@ -386,8 +386,8 @@ int main(int argc, char** argv)
                                                                {"abuffer", abuffer},
                                                                {"transitions", transitions},
                                                                {"filters", filters},
-                                                               {"preprocess", preprocess}
-                                                               };
+                                                               {"preprocess", preprocess},
+                                                               {"filtering", filtering}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,9 +37,18 @@ std::string formatValue(const FilterParameter& p, double v)
         const long i = std::lround(v);
         if (i >= 0 && i < long(p.choices.size())) return p.choices[std::size_t(i)];
     }
-    if (p.integer) return std::to_string(std::lround(v));
-    char b[32];
-    std::snprintf(b, sizeof b, "%.9g", v);
+    if (p.integer && std::fabs(v - std::round(v)) < 1e-9) return std::to_string(std::lround(v));
+    // The shortest text that reads back as the same value: as a float when the value is one
+    // (parameters are stored as floats: 0.1f prints as 0.1, not 0.100000001), else as a double
+    // (ranges: 1e-06, not 9.9999999999999995e-07). Canonical strings stay readable and exact.
+    char b[40];
+    const bool isFloat = double(float(v)) == v;
+    for (int digits = 6; digits <= 17; ++digits)
+    {
+        std::snprintf(b, sizeof b, "%.*g", digits, v);
+        const double back = std::strtod(b, nullptr);
+        if (isFloat ? float(back) == float(v) : back == v) break;
+    }
     return b;
 }
 

@@ -227,6 +227,13 @@ osg::ref_ptr<osg::Image> OffscreenRenderer::renderImage()
     return cb->_image;
 }
 
+double OffscreenRenderer::renderTimedFrame()
+{
+    realizeOnce();
+    checkScenePrograms();
+    return frameMilliseconds();
+}
+
 FrameTimes OffscreenRenderer::timeFrames(unsigned frames)
 {
     realizeOnce();
