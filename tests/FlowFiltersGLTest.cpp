@@ -23,21 +23,7 @@ using namespace osgLoA;
 
 namespace
 {
-struct GpuFixture
-{
-    osg::ref_ptr<HeadlessContext> context = new HeadlessContext;
-    osg::ref_ptr<GpuFilterEngine> engine;
-    GpuFixture()
-    {
-        if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
-        engine = new GpuFilterEngine(*context->getState());
-    }
-    ~GpuFixture()
-    {
-        engine->releaseGLObjects();
-        context->releaseContext();
-    }
-};
+using GpuFixture = loatest::GpuFilterFixture;
 
 /** A test-only filter exposing StructureTensor's passes: output = the smoothed tensor (stage 0)
  *  or the flow (stage 1). */

@@ -5,6 +5,8 @@
 #include <osgLoA/filtering/GpuFilterEngine>
 #include <osgLoA/render/HeadlessContext>
 
+#include "support/TestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,22 +15,7 @@ using namespace osgLoA;
 
 namespace
 {
-/** A context made current, and an engine on it. */
-struct GpuFixture
-{
-    osg::ref_ptr<HeadlessContext> context = new HeadlessContext;
-    osg::ref_ptr<GpuFilterEngine> engine;
-    GpuFixture()
-    {
-        if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
-        engine = new GpuFilterEngine(*context->getState());
-    }
-    ~GpuFixture()
-    {
-        engine->releaseGLObjects();
-        context->releaseContext();
-    }
-};
+using GpuFixture = loatest::GpuFilterFixture;
 
 /** Deterministic texture-like content: sinusoids of several frequencies, a hard edge and noise. */
 FilterImage testImage(int w, int h)

@@ -7,6 +7,8 @@
 #include <osgLoA/filtering/ShockFilter>
 #include <osgLoA/render/HeadlessContext>
 
+#include "support/TestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <osgDB/FileUtils>
@@ -19,22 +21,7 @@ using namespace osgLoA;
 
 namespace
 {
-/** A context made current, and an engine on it. */
-struct GpuFixture
-{
-    osg::ref_ptr<HeadlessContext> context = new HeadlessContext;
-    osg::ref_ptr<GpuFilterEngine> engine;
-    GpuFixture()
-    {
-        if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
-        engine = new GpuFilterEngine(*context->getState());
-    }
-    ~GpuFixture()
-    {
-        engine->releaseGLObjects();
-        context->releaseContext();
-    }
-};
+using GpuFixture = loatest::GpuFilterFixture;
 
 /** A w x h crop of a skimage photograph at (x0, y0), or an empty image when it is missing. */
 FilterImage photoCrop(const std::string& name, int x0, int y0, int w, int h)

@@ -25,21 +25,7 @@ using namespace osgLoA;
 
 namespace
 {
-struct GpuFixture
-{
-    osg::ref_ptr<HeadlessContext> context = new HeadlessContext;
-    osg::ref_ptr<GpuFilterEngine> engine;
-    GpuFixture()
-    {
-        if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
-        engine = new GpuFilterEngine(*context->getState());
-    }
-    ~GpuFixture()
-    {
-        engine->releaseGLObjects();
-        context->releaseContext();
-    }
-};
+using GpuFixture = loatest::GpuFilterFixture;
 
 FilterImage texturedImage(int w, int h)
 {

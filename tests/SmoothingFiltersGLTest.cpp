@@ -13,6 +13,8 @@
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 
+#include "support/TestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -23,21 +25,7 @@ using namespace osgLoA;
 
 namespace
 {
-struct GpuFixture
-{
-    osg::ref_ptr<HeadlessContext> context = new HeadlessContext;
-    osg::ref_ptr<GpuFilterEngine> engine;
-    GpuFixture()
-    {
-        if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
-        engine = new GpuFilterEngine(*context->getState());
-    }
-    ~GpuFixture()
-    {
-        engine->releaseGLObjects();
-        context->releaseContext();
-    }
-};
+using GpuFixture = loatest::GpuFilterFixture;
 
 /** A skimage photograph from the test-data cache or the shared data, or null. */
 osg::ref_ptr<osg::Image> photograph(const std::string& name)

@@ -33,6 +33,14 @@
 
 namespace
 {
+/** A filter specification without commas (the CSV's charts split on them): k=v;k=v. */
+std::string noCommas(std::string s)
+{
+    for (char& c : s)
+        if (c == ',') c = ';';
+    return s;
+}
+
 double msSince(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -231,7 +239,8 @@ std::vector<Row> filters(unsigned frames, std::string& renderer)
     {
         osg::ref_ptr<osgLoA::ImageFilter> f = tryCreate(c.spec);
         if (!f) continue;
-        const std::string spec = f->getParameterString();
+        const std::string spec = noCommas(f->getParameterString());
+        const std::string name = f->filterName();
         osgLoA::FilterImage ours;
         if (f->hasGpuImplementation())
         {
@@ -243,7 +252,7 @@ std::vector<Row> filters(unsigned frames, std::string& renderer)
             const unsigned src = e.createAtlas(r.width, r.height), dst = e.createAtlas(r.width, r.height);
             e.upload(src, r, image);
             Row row;
-            row.parameters = spec + " impl=gpu size=512x512";
+            row.parameters = name + " impl=gpu spec=" + spec + " size=512x512";
             row.times = timed(frames,
                               [&]
                               {
@@ -258,7 +267,7 @@ std::vector<Row> filters(unsigned frames, std::string& renderer)
         }
         {
             Row row;
-            row.parameters = spec + " impl=cpu size=512x512";
+            row.parameters = name + " impl=cpu spec=" + spec + " size=512x512";
             osgLoA::FilterImage cpu;
             row.times = timed(std::max(1u, frames / 5), [&] { cpu = f->apply(image, border); });
             if (ours.empty()) ours = cpu;
@@ -271,7 +280,7 @@ std::vector<Row> filters(unsigned frames, std::string& renderer)
             const cv::Mat in = toMat(image);
             cv::Mat out;
             Row row;
-            row.parameters = spec + " impl=opencv size=512x512";
+            row.parameters = name + " impl=opencv spec=" + spec + " size=512x512";
             row.times = timed(frames, [&] { c.opencv(in, out); });
             const auto d = difference8(ours, out);
             row.errorMean = fixed(d.first, 4);
@@ -371,7 +380,7 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer)
                               cv::subtract(g1, g2, g, cv::noArray(), CV_16S);
                           }
                   });
-        addRow("impl=opencv filter=bilateral+dog", t);
+        addRow("opencv plain filter=bilateral+dog", t);
     }
 #endif
     Gpu gpu;
@@ -417,7 +426,7 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer)
                   });
         e.destroyAtlas(src);
         e.destroyAtlas(dst);
-        addRow("impl=gpu filter=" + spec, t);
+        addRow(std::string("gpu ") + (spec == plainSpec ? "plain" : "flow-based") + " filter=" + noCommas(spec), t);
     }
     {
         osg::ref_ptr<osgLoA::ImageFilter> f = tryCreate(plainSpec);
@@ -440,7 +449,7 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer)
                     for (auto& th : pool)
                         th.join();
                 });
-            addRow("impl=cpu threads=" + std::to_string(threads) + " filter=" + plainSpec, t);
+            addRow("cpu plain threads=" + std::to_string(threads) + " filter=" + noCommas(plainSpec), t);
         }
     }
     return rows;

@@ -53,7 +53,7 @@ osg::ref_ptr<GraphicStyle> photorealistic()
 osg::ref_ptr<GraphicStyle> abstractStyle()
 {
     osg::ref_ptr<GraphicStyle> s =
-        makeStyle("abstract", "colour-quantized textures (filtered mipmaps once texture filtering lands)",
+        makeStyle("abstract", "per-level filtered textures where FilterConfiguration provides them, else colour-quantized textures",
                   "loa_style_abstract.frag.glsl");
     s->getParameters()->addUniform(new osg::Uniform("loa_abstract_levels", 5));
     addFloat(*s, "loa_abstract_chromaStep", 0.05f);

@@ -1,5 +1,7 @@
 #include "TestSupport.h"
 
+#include <stdexcept>
+
 #include <osgLoA/util/ImageFile>
 
 #include <osg/Geometry>
@@ -98,6 +100,18 @@ osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& max
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(g.get());
     return geode;
+}
+
+GpuFilterFixture::GpuFilterFixture() : context(new osgLoA::HeadlessContext)
+{
+    if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");
+    engine = new osgLoA::GpuFilterEngine(*context->getState());
+}
+
+GpuFilterFixture::~GpuFilterFixture()
+{
+    engine->releaseGLObjects();
+    context->releaseContext();
 }
 
 } // namespace loatest

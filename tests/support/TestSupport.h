@@ -2,6 +2,9 @@
 #ifndef OSGLOA_TESTS_TESTSUPPORT_H
 #define OSGLOA_TESTS_TESTSUPPORT_H 1
 
+#include <osgLoA/filtering/GpuFilterEngine>
+#include <osgLoA/render/HeadlessContext>
+
 #include <osg/Geode>
 #include <osg/Image>
 #include <osg/Node>
@@ -33,6 +36,19 @@ void saveFailure(const std::string& name, const osg::Image& actual, const osg::I
 /** A Geode whose one Geometry holds the 8 corners of the box as points, so that its bound is
  *  exactly the box (scenario tests place features by their boxes). */
 osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& maximum);
+
+/** A headless context made current and a GpuFilterEngine on it, for the filter GL tests; the
+ *  destructor frees the engine's GL objects and releases the context. Throws std::runtime_error
+ *  when no EGL context can be made. */
+struct GpuFilterFixture
+{
+    osg::ref_ptr<osgLoA::HeadlessContext> context;
+    osg::ref_ptr<osgLoA::GpuFilterEngine> engine;
+    GpuFilterFixture();
+    ~GpuFilterFixture();
+    GpuFilterFixture(const GpuFilterFixture&) = delete;
+    GpuFilterFixture& operator=(const GpuFilterFixture&) = delete;
+};
 
 } // namespace loatest
 
