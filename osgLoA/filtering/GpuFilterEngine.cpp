@@ -518,11 +518,41 @@ GpuFilterEngine::RunStats GpuFilterEngine::run(const ImageFilter& filter, unsign
     }
     _impl->bindBuffer(_impl->regionBuffer, 0, table.data(), table.size() * sizeof(GLint), nullptr);
 
-    // Scratch atlases for intermediate outputs.
+    // Scratch atlases for intermediate outputs. With a cache, each pass keeps its own (its
+    // filtered tiles must survive until later runs). Without one, an atlas is reused once no
+    // later pass reads what it holds (a pass's output never shares an atlas with its inputs):
+    // a filter of 41 passes (shock, 5 iterations) needs a handful of atlases, not 40.
+    std::vector<std::size_t> slots(P, 0);
+    if (cache)
+        for (std::size_t k = 0; k < P; ++k)
+            slots[k] = k;
+    else
+    {
+        std::vector<std::size_t> lastRead(P, 0);
+        for (std::size_t j = 0; j < P; ++j)
+            for (int in : passes[j].inputs)
+                if (in >= 0) lastRead[std::size_t(in)] = std::max(lastRead[std::size_t(in)], j);
+        std::vector<std::size_t> slotFreeAfter; // per slot: the last pass that reads it
+        for (std::size_t k = 0; k + 1 < P; ++k)
+        {
+            std::size_t slot = slotFreeAfter.size();
+            for (std::size_t s = 0; s < slotFreeAfter.size(); ++s)
+                if (slotFreeAfter[s] < k)
+                {
+                    slot = s;
+                    break;
+                }
+            if (slot == slotFreeAfter.size()) slotFreeAfter.push_back(0);
+            slotFreeAfter[slot] = std::max(lastRead[k], k);
+            slots[k] = slot;
+        }
+    }
     std::vector<unsigned> outputs(P);
     for (std::size_t k = 0; k + 1 < P; ++k)
     {
-        auto key = std::make_pair(source, k);
+        // Keys: (source, pass) for cached runs, (source, kSharedSlots + slot) for the others.
+        const std::size_t kSharedSlots = 1u << 20;
+        auto key = std::make_pair(source, cache ? slots[k] : kSharedSlots + slots[k]);
         auto it = _impl->scratch.find(key);
         if (it == _impl->scratch.end())
             it = _impl->scratch.emplace(key, createAtlas(src.width, src.height)).first;
