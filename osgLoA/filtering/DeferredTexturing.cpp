@@ -1,5 +1,7 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/filtering/DeferredTexturing>
+
+#include "../compositing/RenderTarget.h"
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/util/StateSetVisitor>
@@ -61,44 +63,6 @@ constexpr int kGBufferRenderOrder = 100;
 constexpr int kSourceAtlasUnit = 4, kFilteredAtlasUnit = 5;
 /** SSBO bindings of the shading pass (the filtering stage uses 0-2). */
 constexpr unsigned kPageBinding = 4, kRegionBinding = 5, kTileStateBinding = 6;
-
-osg::ref_ptr<osg::Texture2D> targetTexture(GLint internalFormat, GLenum format, GLenum type)
-{
-    osg::ref_ptr<osg::Texture2D> t = new osg::Texture2D;
-    t->setInternalFormat(internalFormat);
-    t->setSourceFormat(format);
-    t->setSourceType(type);
-    t->setFilter(osg::Texture::MIN_FILTER, osg::Texture::NEAREST);
-    t->setFilter(osg::Texture::MAG_FILTER, osg::Texture::NEAREST);
-    t->setWrap(osg::Texture::WRAP_S, osg::Texture::CLAMP_TO_EDGE);
-    t->setWrap(osg::Texture::WRAP_T, osg::Texture::CLAMP_TO_EDGE);
-    t->setResizeNonPowerOfTwoHint(false);
-    t->setUseHardwareMipMapGeneration(false);
-    t->setTextureSize(1, 1);
-    return t;
-}
-
-struct NoBound : public osg::Drawable::ComputeBoundingBoxCallback
-{
-    osg::BoundingBox computeBound(const osg::Drawable&) const override { return osg::BoundingBox(); }
-};
-
-/** A triangle covering the viewport, vertices in clip space, never culled, without a bound. */
-osg::ref_ptr<osg::Geometry> fullScreenTriangle()
-{
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back(osg::Vec3(-1.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(3.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(-1.0f, 3.0f, 0.0f));
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
-    g->setUseDisplayList(false);
-    g->setUseVertexBufferObjects(true);
-    g->setCullingActive(false);
-    g->setComputeBoundingBoxCallback(new NoBound);
-    return g;
-}
 
 /** The projection with near and far planes fitted to a view-space sphere (depth precision of
  *  the G-buffer), keeping the frustum's x/y extent. */
@@ -300,10 +264,10 @@ DeferredTexturing::Pipeline::Pipeline(DeferredTexturing* node)
     camera->setViewport(0, 0, 1, 1);
     camera->setAllowEventFocus(false);
     camera->setImplicitBufferAttachmentMask(0, 0);
-    targets[TEXCOORD] = targetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
-    targets[NORMAL] = targetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
-    targets[BASE_COLOR] = targetTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
-    targets[DEPTH] = targetTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT);
+    targets[TEXCOORD] = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
+    targets[NORMAL] = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
+    targets[BASE_COLOR] = detail::createTargetTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+    targets[DEPTH] = detail::createTargetTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT);
     for (int t = TEXCOORD; t < DEPTH; ++t)
         camera->attach(osg::Camera::BufferComponent(osg::Camera::COLOR_BUFFER0 + t), targets[t].get());
     camera->attach(osg::Camera::DEPTH_BUFFER, targets[DEPTH].get());
@@ -328,7 +292,7 @@ DeferredTexturing::Pipeline::Pipeline(DeferredTexturing* node)
     shade = new osg::Geode;
     shade->setName("osgLoA.DeferredTexturing.Shade");
     shade->setCullingActive(false);
-    shade->addDrawable(fullScreenTriangle().get());
+    shade->addDrawable(detail::createFullScreenTriangle().get());
     osg::StateSet* ss = shade->getOrCreateStateSet();
     ss->setDataVariance(osg::Object::DYNAMIC);
     ss->setAttributeAndModes(
@@ -418,7 +382,7 @@ void DeferredTexturing::Pipeline::prepare(DeferredTexturing& node)
     // Atlases and tables of the shading stage, sized to the new layout.
     auto atlas = [&](const char* name)
     {
-        osg::ref_ptr<osg::Texture2D> a = targetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
+        osg::ref_ptr<osg::Texture2D> a = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
         a->setName(name);
         a->setTextureSize(t->atlasWidth(), t->atlasHeight());
         return a;

@@ -1,6 +1,8 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/filtering/GpuFilterEngine>
 #include <osgLoA/filtering/PostProcessFiltering>
+
+#include "../compositing/RenderTarget.h"
 #include <osgLoA/render/ShaderLibrary>
 
 #include <osg/Geode>
@@ -46,21 +48,6 @@ public:
     PostProcessFiltering* _owner;
 };
 
-osg::ref_ptr<osg::Texture2D> floatTexture()
-{
-    osg::ref_ptr<osg::Texture2D> t = new osg::Texture2D;
-    t->setInternalFormat(GL_RGBA32F_ARB);
-    t->setSourceFormat(GL_RGBA);
-    t->setSourceType(GL_FLOAT);
-    // No mipmaps: the texture must be complete for image load/store, and is read texel for pixel.
-    t->setFilter(osg::Texture::MIN_FILTER, osg::Texture::NEAREST);
-    t->setFilter(osg::Texture::MAG_FILTER, osg::Texture::NEAREST);
-    t->setWrap(osg::Texture::WRAP_S, osg::Texture::CLAMP_TO_EDGE);
-    t->setWrap(osg::Texture::WRAP_T, osg::Texture::CLAMP_TO_EDGE);
-    t->setResizeNonPowerOfTwoHint(false);
-    t->setUseHardwareMipMapGeneration(false);
-    return t;
-}
 } // namespace
 
 /** Per-context GL objects of the filter stage, and what the last stage measured. */
@@ -114,9 +101,9 @@ PostProcessFiltering::~PostProcessFiltering()
 void PostProcessFiltering::build()
 {
     _internals = new Internals;
-    _frameTexture = floatTexture();
+    _frameTexture = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
     _frameTexture->setName("loa_postprocess_frame");
-    _filteredTexture = floatTexture();
+    _filteredTexture = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
     _filteredTexture->setName("loa_postprocess_filtered");
 
     _sceneCamera = new osg::Camera;
@@ -206,9 +193,9 @@ void PostProcessFiltering::resize(int width, int height)
     _height = height;
     // New textures, and the camera's render stages dropped (setRenderingCache): OSG 3.6 sets an
     // FBO up once per render stage, so new stages attach the new textures in every context.
-    _frameTexture = floatTexture();
+    _frameTexture = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
     _frameTexture->setName("loa_postprocess_frame");
-    _filteredTexture = floatTexture();
+    _filteredTexture = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
     _filteredTexture->setName("loa_postprocess_filtered");
     for (osg::Texture2D* t : {_frameTexture.get(), _filteredTexture.get()})
         t->setTextureSize(width, height);
