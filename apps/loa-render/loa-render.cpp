@@ -2,10 +2,13 @@
 #include "../common/AppSupport.h"
 
 #include <osgLoA/Version>
+#include <osgLoA/abstraction/AbstractionNode>
+#include <osgLoA/abstraction/AbstractionStyleCatalog>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/AtomicFile>
@@ -16,8 +19,11 @@
 
 #include <osg/Uniform>
 #include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
 
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -44,6 +50,19 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
                         usage scenario NAME of the library (loa-scenario list) or FILE
                         (.osgt/.osgb/.osgx); the features are drawn in their configurations'
                         graphic styles and composed by the stencil-routed A-buffer
+  --style NAME|FILE     draw in one graphic style: a style of --list-styles, or an
+                        abstraction style file (.osgt/.osgb/.osgx holding an
+                        osgLoA::AbstractionStyle). Image-space and hybrid styles (papers 001,
+                        002) render through an abstraction node; the other styles through a
+                        LoA node whose scenario draws every feature in that style
+  --list-styles         print the name of every graphic style, one a line, and exit
+  --focus X,Y           focus point of adaptive styles in normalized window coordinates
+                        ((0,0) bottom left; default the style's, usually 0.5,0.5)
+  --focus-object ID     focus object: a feature id (or drawable number in scenes without
+                        features); 0 is the object under the focus point
+  --focus-world X,Y,Z   focus point in scene coordinates
+  --focus-radii IN,OUT  focus weight 1 within IN, 0 beyond OUT (fractions of the image
+                        diagonal)
   --abuffer-samples N   A-buffer samples per pixel (default 4; at most GL_MAX_SAMPLES)
   --abuffer-passes N    A-buffer routing passes at most (default 4)
   --program plain       draw with the project's loa_plain GLSL program instead of OSG's
@@ -58,7 +77,9 @@ failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
 
 struct Options
 {
-    std::string model, out = "out/render.png", stats, city, program, scenario;
+    std::string model, out = "out/render.png", stats, city, program, scenario, style;
+    std::string focus, focusObject, focusWorld, focusRadii;
+    bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
     loa::CameraChoice camera;
     int width = 1280, height = 720, samples = 0;
@@ -90,6 +111,18 @@ Options parse(int argc, char** argv)
             o.city = args.value(a);
         else if (a == "--scenario")
             o.scenario = args.value(a);
+        else if (a == "--style")
+            o.style = args.value(a);
+        else if (a == "--list-styles")
+            o.listStyles = true;
+        else if (a == "--focus")
+            o.focus = args.value(a);
+        else if (a == "--focus-object")
+            o.focusObject = args.value(a);
+        else if (a == "--focus-world")
+            o.focusWorld = args.value(a);
+        else if (a == "--focus-radii")
+            o.focusRadii = args.value(a);
         else if (a == "--abuffer-samples")
             o.samplesABuffer = loa::parseCount(a, args.value(a), 64);
         else if (a == "--abuffer-passes")
@@ -113,6 +146,11 @@ Options parse(int argc, char** argv)
     if (!o.scenario.empty() && !o.program.empty())
         throw loa::UsageError(
             "--scenario and --program exclude each other (a scenario's styles bring their programs)");
+    if (!o.style.empty() && (!o.scenario.empty() || !o.program.empty()))
+        throw loa::UsageError("--style excludes --scenario and --program");
+    if ((!o.focus.empty() || !o.focusObject.empty() || !o.focusWorld.empty() || !o.focusRadii.empty()) &&
+        o.style.empty())
+        throw loa::UsageError("--focus, --focus-object, --focus-world and --focus-radii need --style");
     if (o.samplesABuffer == 0 || o.passesABuffer == 0)
         throw loa::UsageError("--abuffer-samples and --abuffer-passes must be at least 1");
     if (osgDB::getLowerCaseFileExtension(o.out) != "png")
@@ -120,8 +158,113 @@ Options parse(int argc, char** argv)
     return o;
 }
 
+std::vector<float> parseFloats(const std::string& option, const std::string& text, std::size_t count)
+{
+    std::vector<float> v;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ','))
+    {
+        try
+        {
+            std::size_t used = 0;
+            const float f = std::stof(item, &used);
+            if (used != item.size() || !std::isfinite(f)) throw std::invalid_argument(item);
+            v.push_back(f);
+        }
+        catch (const std::exception&)
+        {
+            throw loa::UsageError(option + " '" + text + "': '" + item + "' is not a number");
+        }
+    }
+    if (v.size() != count)
+        throw loa::UsageError(option + " '" + text + "' needs " + std::to_string(count) +
+                              " comma-separated numbers");
+    return v;
+}
+
+/** The abstraction style of --style (a catalog name or a file), with the focus options applied;
+ *  null when --style names another graphic style. */
+osg::ref_ptr<osgLoA::AbstractionStyle> abstractionStyle(const Options& o)
+{
+    osg::ref_ptr<osgLoA::AbstractionStyle> style;
+    const std::string ext = osgDB::getLowerCaseFileExtension(o.style);
+    if (osgLoA::AbstractionStyleCatalog::instance().contains(o.style))
+        style = osgLoA::AbstractionStyleCatalog::instance().create(o.style);
+    else if (ext == "osgt" || ext == "osgb" || ext == "osgx")
+    {
+        if (!osgDB::fileExists(o.style)) throw std::runtime_error("--style: no file '" + o.style + "'");
+        osg::ref_ptr<osg::Object> object = osgDB::readRefObjectFile(o.style);
+        style = dynamic_cast<osgLoA::AbstractionStyle*>(object.get());
+        if (!style)
+            throw std::runtime_error("--style: '" + o.style + "' does not hold an osgLoA::AbstractionStyle");
+        try
+        {
+            style->validate();
+        }
+        catch (const std::invalid_argument& e)
+        {
+            throw std::runtime_error("--style '" + o.style + "': " + e.what());
+        }
+    }
+    else if (osgLoA::GraphicStyleCatalog::instance().contains(o.style))
+    {
+        if (!o.focus.empty() || !o.focusObject.empty() || !o.focusWorld.empty() || !o.focusRadii.empty())
+            throw loa::UsageError("the focus options apply to image-space and hybrid styles, not to '" +
+                                  o.style + "'");
+        return nullptr;
+    }
+    else
+        throw loa::UsageError("unknown --style '" + o.style + "' (loa-render --list-styles lists them)");
+
+    osg::ref_ptr<osgLoA::AbstractionFocus> focus =
+        new osgLoA::AbstractionFocus(*style->getFocus(), osg::CopyOp::DEEP_COPY_ALL);
+    if (!o.focus.empty())
+    {
+        const std::vector<float> v = parseFloats("--focus", o.focus, 2);
+        focus->setMode(osgLoA::AbstractionFocus::SCREEN_POINT);
+        focus->setScreenPoint(osg::Vec2f(v[0], v[1]));
+    }
+    if (!o.focusWorld.empty())
+    {
+        const std::vector<float> v = parseFloats("--focus-world", o.focusWorld, 3);
+        focus->setMode(osgLoA::AbstractionFocus::WORLD_POINT);
+        focus->setWorldPoint(osg::Vec3d(v[0], v[1], v[2]));
+    }
+    if (!o.focusObject.empty())
+    {
+        focus->setMode(osgLoA::AbstractionFocus::OBJECT);
+        focus->setObjectId(loa::parseCount("--focus-object", o.focusObject, 0xffffffu));
+    }
+    if (!o.focusRadii.empty())
+    {
+        const std::vector<float> v = parseFloats("--focus-radii", o.focusRadii, 2);
+        focus->setInnerRadius(v[0]);
+        focus->setOuterRadius(v[1]);
+    }
+    try
+    {
+        focus->validate();
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw loa::UsageError(std::string("focus: ") + e.what());
+    }
+    style->setFocus(focus.get());
+    return style;
+}
+
 int run(const Options& o)
 {
+    if (o.listStyles)
+    {
+        for (const std::string& name : osgLoA::GraphicStyleCatalog::instance().names())
+            std::cout << name << "\n";
+        return loa::kOk;
+    }
+    osg::ref_ptr<osgLoA::AbstractionStyle> abstraction;
+    if (!o.style.empty()) abstraction = abstractionStyle(o);
+
     // The scene first: a missing or malformed model is reported as such, with or without GL.
     const bool glInfoOnly = o.glInfo;
     osg::ref_ptr<osg::Node> scene;
@@ -177,18 +320,35 @@ int run(const Options& o)
         ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
     }
     osg::ref_ptr<osgLoA::LoANode> loaNode;
-    if (!o.scenario.empty())
+    osg::ref_ptr<osgLoA::AbstractionNode> abstractionNode;
+    const bool styleScenario = !o.style.empty() && !abstraction.valid();
+    if (!o.scenario.empty() || styleScenario)
     {
         std::string origin;
         osg::ref_ptr<osgLoA::UsageScenario> scenario;
-        try
+        if (styleScenario)
         {
-            scenario = osgLoA::ScenarioLibrary::load(o.scenario, &origin);
+            // One configuration: every feature in the style.
+            scenario = new osgLoA::UsageScenario;
+            scenario->setName("style-" + o.style);
+            osg::ref_ptr<osgLoA::TransitionConfiguration> c = new osgLoA::TransitionConfiguration;
+            c->setName(o.style);
+            c->setAllFeatureTypes();
+            c->setStyle(o.style);
+            // Any metric will do: the default blend function weighs every interest 1.
+            c->setInterpolation(osgLoA::TransitionConfiguration::OBJECT);
+            c->addMetric(new osgLoA::SaliencyMetric(osgLoA::SaliencyMetric::FEATURE_INTEREST, 0.0, 1.0));
+            scenario->addConfiguration(c.get());
         }
-        catch (const std::exception& e)
-        {
-            throw std::runtime_error(std::string("--scenario: ") + e.what());
-        }
+        else
+            try
+            {
+                scenario = osgLoA::ScenarioLibrary::load(o.scenario, &origin);
+            }
+            catch (const std::exception& e)
+            {
+                throw std::runtime_error(std::string("--scenario: ") + e.what());
+            }
         if (o.samplesABuffer > unsigned(caps.maxSamples))
             throw loa::UsageError("--abuffer-samples " + std::to_string(o.samplesABuffer) +
                                   " exceeds this context's GL_MAX_SAMPLES (" +
@@ -206,10 +366,18 @@ int run(const Options& o)
         }
         catch (const std::exception& e)
         {
-            throw std::runtime_error("scenario '" + o.scenario +
+            throw std::runtime_error("scenario '" + (styleScenario ? "style-" + o.style : o.scenario) +
                                      "' cannot be used with this model: " + e.what());
         }
-        scene = loaNode;
+        // Configurations in image-space styles: abstraction nodes around the LoA node.
+        scene = osgLoA::AbstractionNode::wrapScenario(loaNode.get());
+    }
+    if (abstraction.valid())
+    {
+        abstractionNode = new osgLoA::AbstractionNode;
+        abstractionNode->setStyle(abstraction.get());
+        abstractionNode->addChild(scene.get());
+        scene = abstractionNode;
     }
     renderer->setSceneData(scene.get());
     loa::applyCamera(*renderer, o.camera);
@@ -218,15 +386,26 @@ int run(const Options& o)
     osgLoA::FrameTimes times;
     if (o.frames > 0) times = renderer->timeFrames(o.frames);
     osg::ref_ptr<osg::Image> image = renderer->renderImage();
+    for (osg::Node* n = scene.get(); n;)
+    {
+        // Every abstraction stage must have run: a failed stage would show the unabstracted frame.
+        osgLoA::AbstractionNode* a = dynamic_cast<osgLoA::AbstractionNode*>(n);
+        if (!a) break;
+        if (!a->getLastError().empty())
+            throw std::runtime_error("abstraction style '" + a->getStyle()->getName() +
+                                     "': " + a->getLastError());
+        n = a->getNumChildren() ? a->getChild(0) : nullptr;
+    }
     osgLoA::ImageFile::write(o.out, *image);
 
     const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
     std::cout << "rendered " << what << ": " << stats.summary() << "\n"
               << "view: " << o.camera.describe() << ", " << o.width << "x" << o.height
               << (o.samples ? ", " + std::to_string(o.samples) + "x MSAA" : std::string())
-              << (!o.scenario.empty() ? ", scenario " + o.scenario
-                  : o.program.empty() ? ", fixed-function pipeline"
-                                      : ", program " + o.program)
+              << (!o.style.empty()      ? ", style " + o.style
+                  : !o.scenario.empty() ? ", scenario " + o.scenario
+                  : o.program.empty()   ? ", fixed-function pipeline"
+                                        : ", program " + o.program)
               << "\n"
               << "GL: " << caps.summary() << " via EGL " << renderer->getContext()->getPlatform() << "\n"
               << "scene built/loaded in " << std::fixed << std::setprecision(1) << loadMs << " ms\n";
@@ -253,6 +432,19 @@ int run(const Options& o)
                   << " layer(s), G-buffer " << mem.geometryBufferBytes / 1048576.0 << ", ping-pong "
                   << mem.pingPongBytes / 1048576.0 << ", unsharp mask " << mem.unsharpBytes / 1048576.0
                   << "); paper 004 formula W H (2N+7)/262144: " << mem.paperBytes / 1048576.0 << " MB\n";
+    }
+    if (abstractionNode)
+    {
+        const osgLoA::AbstractionNode::FrameStatistics st = abstractionNode->getLastFrameStatistics();
+        std::cout << std::setprecision(1) << "abstraction: " << st.passes << " scene pass(es), "
+                  << st.filterRuns << " filter run(s) writing " << st.filterTexels
+                  << " texels; focus at pixel (" << st.focusPixel.x() << ", " << st.focusPixel.y() << ")"
+                  << (st.focusObject >= 0
+                          ? ", focus object id " +
+                                std::to_string(abstractionNode->getObjectId(unsigned(st.focusObject)))
+                          : std::string())
+                  << "; render targets " << abstractionNode->memoryBytes(o.width, o.height) / 1048576.0
+                  << " MiB\n";
     }
     std::cout << "wrote " << o.out << "\n";
 

@@ -7,10 +7,12 @@
 #include <osg/Geometry>
 
 #include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
 #include <osgDB/Registry>
 #include <osgDB/WriteFile>
 
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 #include <array>
@@ -112,6 +114,37 @@ GpuFilterFixture::~GpuFilterFixture()
 {
     engine->releaseGLObjects();
     context->releaseContext();
+}
+
+} // namespace loatest
+
+namespace loatest
+{
+
+std::string fileBytes(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+osgLoA::FilterImage photoCrop(const std::string& name, int x0, int y0, int w, int h)
+{
+    for (const std::string& dir : {std::string(LOA_SOURCE_DIR "/data/cache/python3-skimage/"),
+                                   std::string(LOA_SOURCE_DIR "/../shared/data/images/")})
+    {
+        if (!osgDB::fileExists(dir + name)) continue;
+        osg::ref_ptr<osg::Image> image = osgDB::readRefImageFile(dir + name);
+        if (!image) continue;
+        const osgLoA::FilterImage full = osgLoA::FilterImage::fromImage(*image);
+        osgLoA::FilterImage out(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                out.set(x, y, full.get(x0 + x, y0 + y));
+        return out;
+    }
+    return osgLoA::FilterImage();
 }
 
 } // namespace loatest

@@ -14,6 +14,13 @@
 namespace loatest
 {
 
+/** The bytes of a file ("" when it cannot be read). */
+std::string fileBytes(const std::string& path);
+
+/** A w x h crop at (x0, y0) of a skimage photograph (data/cache/python3-skimage, extracted by
+ *  scripts/fetch-test-data, or ../shared/data/images), or an empty image when it is missing. */
+osgLoA::FilterImage photoCrop(const std::string& name, int x0, int y0, int w, int h);
+
 /** A fresh empty directory under the build's test-output folder. */
 std::string freshDirectory(const std::string& name);
 

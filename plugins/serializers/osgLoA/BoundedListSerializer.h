@@ -26,6 +26,7 @@
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
+#include <stdexcept>
 #include <string>
 
 namespace osgLoA
@@ -211,6 +212,27 @@ private:
     std::string _label;
     std::string _elementName;
 };
+
+/** CheckedObjectSerializer for a setter that refuses some values with std::invalid_argument (a
+ *  node refusing a filter or a style): the read fails with the setter's message instead of the
+ *  exception leaving osgDB. */
+template <class C, class P> class RefusableObjectSerializer : public CheckedObjectSerializer<C, P>
+{
+public:
+    using CheckedObjectSerializer<C, P>::CheckedObjectSerializer;
+    bool read(osgDB::InputStream& is, osg::Object& obj) override
+    {
+        try
+        {
+            return CheckedObjectSerializer<C, P>::read(is, obj);
+        }
+        catch (const std::invalid_argument& e)
+        {
+            is.throwException(e.what());
+            return false;
+        }
+    }
+};
 } // namespace osgLoA
 
 #define ADD_BOUNDED_LIST_SERIALIZER(PROP, TYPE, ELEMENT)                                                     \
@@ -229,6 +251,12 @@ private:
     wrapper->addSerializer(                                                                                  \
         new osgLoA::CheckedObjectSerializer<MyClass, TYPE>(wrapper->getName(), #PROP, #TYPE, DEF,            \
                                                            &MyClass::get##PROP, &MyClass::set##PROP),        \
+        osgDB::BaseSerializer::RW_OBJECT)
+
+#define ADD_REFUSABLE_OBJECT_SERIALIZER(PROP, TYPE, DEF)                                                     \
+    wrapper->addSerializer(                                                                                  \
+        new osgLoA::RefusableObjectSerializer<MyClass, TYPE>(wrapper->getName(), #PROP, #TYPE, DEF,          \
+                                                             &MyClass::get##PROP, &MyClass::set##PROP),      \
         osgDB::BaseSerializer::RW_OBJECT)
 
 #endif

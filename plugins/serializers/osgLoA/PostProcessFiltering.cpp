@@ -6,42 +6,14 @@
 
 #include "BoundedListSerializer.h"
 
-#include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
-
-#include <stdexcept>
-
-namespace
-{
-typedef osgLoA::PostProcessFiltering Node;
-
-class FilterSerializer : public osgLoA::CheckedObjectSerializer<Node, osgLoA::ImageFilter>
-{
-public:
-    using CheckedObjectSerializer::CheckedObjectSerializer;
-    bool read(osgDB::InputStream& is, osg::Object& obj) override
-    {
-        try
-        {
-            return CheckedObjectSerializer::read(is, obj);
-        }
-        catch (const std::invalid_argument& e)
-        {
-            is.throwException(e.what());
-            return false;
-        }
-    }
-};
-} // namespace
 
 REGISTER_OBJECT_WRAPPER(osgLoA_PostProcessFiltering, new osgLoA::PostProcessFiltering,
                         osgLoA::PostProcessFiltering,
                         "osg::Object osg::Node osg::Group osgLoA::PostProcessFiltering")
 {
-    wrapper->addSerializer(new FilterSerializer(wrapper->getName(), "Filter", "osgLoA::ImageFilter", NULL,
-                                                &MyClass::getFilter, &MyClass::setFilter),
-                           osgDB::BaseSerializer::RW_OBJECT);
+    ADD_REFUSABLE_OBJECT_SERIALIZER(Filter, osgLoA::ImageFilter, NULL);
     ADD_BOOL_SERIALIZER(Enabled, true);
     ADD_BOOL_SERIALIZER(MeasureFilterTime, false);
 }

@@ -1,0 +1,23 @@
+#version 450 compatibility
+// Object-ID pass (paper 001 §4.2, paper 002 §3): every object in its unique colour, flat and
+// unlit. Target 0: the object's number (1-based index of osgLoA::AbstractionNode's object table)
+// as 24 bits in RGB, exact in RGBA8; target 1: the object's importance (R) and scenario
+// weight (G).
+uniform vec4 loa_objectId = vec4(0.0);
+uniform float loa_objectImportance = 0.0;
+uniform float loa_objectWeight = 0.0;
+
+in vec2 loa_texCoord;
+in vec4 loa_color;
+in float loa_gouraud;
+in vec3 loa_objectPosition;
+in vec3 loa_objectNormal;
+
+layout(location = 0) out vec4 loa_idColor;
+layout(location = 1) out vec4 loa_objectData;
+
+void main()
+{
+    loa_idColor = loa_objectId;
+    loa_objectData = vec4(loa_objectImportance, loa_objectWeight, 0.0, 1.0);
+}

@@ -1,0 +1,21 @@
+#version 450 compatibility
+// Normal pass without shading (paper 002 §3: "the scene is rendered normally without any
+// shading"): texture x vertex colour, no lighting. Alpha: the material's opacity.
+uniform sampler2D loa_baseTexture;
+uniform bool loa_hasTexture = false; // set true on the StateSets that have a texture on unit 0
+
+in vec2 loa_texCoord;
+in vec4 loa_color;
+in float loa_gouraud;
+in vec3 loa_objectPosition;
+in vec3 loa_objectNormal;
+
+layout(location = 0) out vec4 loa_fragColor;
+
+void main()
+{
+    vec4 base = loa_color;
+    if (loa_hasTexture)
+        base *= texture(loa_baseTexture, loa_texCoord);
+    loa_fragColor = base;
+}
