@@ -64,3 +64,8 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer);
  *  fly-through at 800x600, 1280x720 and 1920x1080: setups 1-3 of deferred texturing and setup 4
  *  (post-process filtering) with the anisotropic Kuwahara filter, caches cleared per run. */
 std::vector<Row> filtering(unsigned frames, std::string& renderer);
+
+/** Case "abstraction" (BenchAbstraction.cpp): Table 1 of papers 001 and 002 on the demo city at
+ *  640x480, 800x600 and 1280x1024: regular rendering and every abstraction style along a short
+ *  camera move, as ratios to regular rendering; error = frame-to-frame change (coherence). */
+std::vector<Row> abstraction(unsigned frames, std::string& renderer);

@@ -144,8 +144,8 @@ std::vector<Row> filtering(unsigned frames, std::string& renderer)
             if (setup.mode == 1) reference = last;
             const bool compared = setup.mode > 0;
             std::ostringstream p;
-            p << sz[0] << "x" << sz[1] << " " << setup.name
-              << " filter=" << (setup.mode <= 0 ? std::string("none") : noCommas(filter->getParameterString()))
+            p << sz[0] << "x" << sz[1] << " " << setup.name << " filter="
+              << (setup.mode <= 0 ? std::string("none") : noCommas(filter->getParameterString()))
               << std::fixed << std::setprecision(2) << " avg_fps=" << 1000.0 / row.times.mean()
               << " min_fps=" << 1000.0 / row.times.max() << " first_frame_ms=" << firstMs;
             if (deferred)

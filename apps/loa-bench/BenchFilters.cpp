@@ -426,7 +426,9 @@ std::vector<Row> preprocess(unsigned frames, std::string& renderer)
                   });
         e.destroyAtlas(src);
         e.destroyAtlas(dst);
-        addRow(std::string("gpu ") + (spec == plainSpec ? "plain" : "flow-based") + " filter=" + noCommas(spec), t);
+        addRow(std::string("gpu ") + (spec == plainSpec ? "plain" : "flow-based") +
+                   " filter=" + noCommas(spec),
+               t);
     }
     {
         osg::ref_ptr<osgLoA::ImageFilter> f = tryCreate(plainSpec);

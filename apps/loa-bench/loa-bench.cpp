@@ -85,6 +85,10 @@ cases:
                  Kuwahara filter in setups 1-4 (per-level cached, per-fragment, per-fragment
                  cached, post-process) at 800x600, 1280x720, 1920x1080; error = last frame
                  against setup 1's (8-bit units)
+  abstraction    Table 1 of papers 001 and 002: the demo city in every image-space and
+                 hybrid abstraction style (and regular rendering) along a short camera move
+                 at 640x480, 800x600, 1280x1024, as ratios to regular rendering; error =
+                 mean per-pixel change between consecutive frames (coherence)
   preprocess     paper 004's pre-process, bilateral then DoG on every mip level of 1,520
                  textures of 128x128, as textures per second: OpenCV, our GPU, our CPU on all
                  cores, and the flow-based version on the GPU
@@ -387,7 +391,8 @@ int main(int argc, char** argv)
                                                                {"transitions", transitions},
                                                                {"filters", filters},
                                                                {"preprocess", preprocess},
-                                                               {"filtering", filtering}};
+                                                               {"filtering", filtering},
+                                                               {"abstraction", abstraction}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int
