@@ -45,6 +45,8 @@ uniform float loa_abstraction_sobelThresholdFar = 0.5;
 uniform float loa_abstraction_brightening = 1.5;
 uniform float loa_abstraction_pencilGamma = 2.0;
 uniform float loa_abstraction_shadingAtFocus = 0.5;
+uniform ivec2 loa_abstraction_origin = ivec2(0); // the viewport's origin: the textures start there
+uniform bool loa_abstraction_stagesOk = true;      // false: the image stages failed, show N
 
 layout(location = 0) out vec4 loa_fragColor;
 
@@ -56,8 +58,13 @@ vec3 loa_id(ivec2 p)
 
 void main()
 {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 p = ivec2(gl_FragCoord.xy) - loa_abstraction_origin;
     vec4 n = texelFetch(loa_abstraction_normal, p, 0);
+    if (!loa_abstraction_stagesOk)
+    {
+        loa_fragColor = vec4(n.rgb, 1.0);
+        return;
+    }
     float phi = clamp(n.a, 0.0, 1.0);
 #if LOA_ADAPTIVITY == 1
     float edgeOpacity = mix(loa_abstraction_edgeOpacityFar, loa_abstraction_edgeOpacity, phi);

@@ -1,6 +1,7 @@
 #version 450 compatibility
 // Focus pass (osgLoA::AbstractionNode): writes the focus weight phi of each pixel into the
-// normal frame's alpha (the colour mask leaves RGB alone), where the image filters read it.
+// normal frame's alpha (blending keeps the frame's RGB: BlendFunc(ZERO, ONE, ONE, ZERO)), where
+// the image filters read it.
 //  LOA_ADAPTIVITY 0 (uniform): phi = 0, the strongest level everywhere;
 //  1 (screen focus, paper 001): phi = 1 - smoothstep(inner, outer, |p - f| / diagonal), and with
 //    LOA_SEGMENTATION phi = 1 on the focus object's pixels (001 §4.2);

@@ -4,8 +4,9 @@
 // as 24 bits in RGB, exact in RGBA8; target 1: the object's importance (R) and scenario
 // weight (G).
 uniform vec4 loa_objectId = vec4(0.0);
-uniform float loa_objectImportance = 0.0;
-uniform float loa_objectWeight = 0.0;
+uniform vec4 loa_objectImportance = vec4(0.0); // component loa_abstraction_slot is this node's
+uniform vec4 loa_objectWeight = vec4(0.0);
+uniform int loa_abstraction_slot = 0; // nested abstraction nodes share the objects' uniforms
 
 in vec2 loa_texCoord;
 in vec4 loa_color;
@@ -19,5 +20,6 @@ layout(location = 1) out vec4 loa_objectData;
 void main()
 {
     loa_idColor = loa_objectId;
-    loa_objectData = vec4(loa_objectImportance, loa_objectWeight, 0.0, 1.0);
+    loa_objectData =
+        vec4(loa_objectImportance[loa_abstraction_slot], loa_objectWeight[loa_abstraction_slot], 0.0, 1.0);
 }

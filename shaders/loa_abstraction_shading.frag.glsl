@@ -16,7 +16,8 @@
 #endif
 uniform int loa_abstraction_levels = 4;
 uniform int loa_abstraction_levelsFar = 8;
-uniform float loa_objectImportance = 0.0;
+uniform vec4 loa_objectImportance = vec4(0.0); // component loa_abstraction_slot is this node's
+uniform int loa_abstraction_slot = 0;
 uniform float loa_abstraction_pencilScale = 0.25;
 uniform float loa_abstraction_ambient = 0.35;
 uniform sampler2DArray loa_abstraction_pencil;
@@ -34,7 +35,7 @@ void main()
     float s = clamp(loa_gouraud, 0.0, 1.0);
 #if defined(LOA_ADAPTIVE)
     float n = floor(mix(float(loa_abstraction_levelsFar), float(loa_abstraction_levels),
-                        clamp(loa_objectImportance, 0.0, 1.0)) + 0.5);
+                        clamp(loa_objectImportance[loa_abstraction_slot], 0.0, 1.0)) + 0.5);
 #else
     float n = float(loa_abstraction_levels);
 #endif

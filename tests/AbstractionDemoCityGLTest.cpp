@@ -213,3 +213,79 @@ TEST(AbstractionScenarioGLTest, OnlyTheConfigurationsFeaturesAreAbstracted)
     EXPECT_GT(double(changed), 0.5 * double(building));
     EXPECT_EQ(outsideChanged, 0u);
 }
+
+TEST(AbstractionScenarioGLTest, TwoAbstractionStylesInOneScenario)
+{
+    // Buildings in "hybrid-toon", streets in "kuwahara5", the rest photorealistic: two nested
+    // abstraction nodes whose objects share their uniforms (one component each). Masks of the
+    // buildings and the streets from scenarios that hide them.
+    auto render = [&](const std::string& buildings, const std::string& streets)
+    {
+        osg::ref_ptr<UsageScenario> s = new UsageScenario;
+        s->setName("two");
+        const std::pair<std::vector<FeatureType>, std::string> parts[] = {
+            {{FeatureType::Building}, buildings},
+            {{FeatureType::Street}, streets},
+            {{FeatureType::Generic, FeatureType::Water, FeatureType::Green, FeatureType::Terrain},
+             "photorealistic"}};
+        for (const auto& [types, style] : parts)
+        {
+            osg::ref_ptr<TransitionConfiguration> c = new TransitionConfiguration;
+            c->setName("c" + std::to_string(s->getConfigurations().size()));
+            c->setFeatureTypes(types);
+            c->setStyle(style);
+            c->setInterpolation(TransitionConfiguration::OBJECT);
+            c->addMetric(new SaliencyMetric(SaliencyMetric::FEATURE_INTEREST, 0.0, 1.0));
+            s->addConfiguration(c.get());
+        }
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(s.get());
+        loa->addChild(city().get());
+        osg::ref_ptr<osg::Node> top = AbstractionNode::wrapScenario(loa.get());
+        osg::ref_ptr<OffscreenRenderer> r = renderer(top.get());
+        look(*r, 0.0);
+        osg::ref_ptr<osg::Image> img = r->renderImage();
+        if (AbstractionNode* a = dynamic_cast<AbstractionNode*>(top.get()))
+        {
+            EXPECT_EQ(a->getLastError(), "");
+        }
+        return img;
+    };
+    osg::ref_ptr<osg::Image> both = render("hybrid-toon", "kuwahara5");
+    osg::ref_ptr<osg::Image> plain = render("photorealistic", "photorealistic");
+    osg::ref_ptr<osg::Image> noBuildings = render("hidden", "photorealistic");
+    osg::ref_ptr<osg::Image> noStreets = render("photorealistic", "hidden");
+    auto differ = [](const osg::Image& x, const osg::Image& y, std::size_t i, int tol)
+    {
+        for (std::size_t k = 0; k < 3; ++k)
+            if (std::abs(int(x.data()[i * 4 + k]) - int(y.data()[i * 4 + k])) > tol) return true;
+        return false;
+    };
+    std::size_t buildings = 0, buildingsChanged = 0, streets = 0, streetsChanged = 0, rest = 0,
+                restChanged = 0;
+    for (std::size_t i = 0; i < std::size_t(W) * H; ++i)
+    {
+        const bool b = differ(*plain, *noBuildings, i, 0), st = differ(*plain, *noStreets, i, 0);
+        if (b)
+        {
+            ++buildings;
+            buildingsChanged += differ(*both, *plain, i, 8);
+        }
+        else if (st)
+        {
+            ++streets;
+            streetsChanged += differ(*both, *plain, i, 2);
+        }
+        else
+        {
+            ++rest;
+            restChanged += differ(*both, *plain, i, 0);
+        }
+    }
+    std::cout << "buildings " << buildingsChanged << "/" << buildings << " changed, streets "
+              << streetsChanged << "/" << streets << ", rest " << restChanged << "/" << rest << std::endl;
+    EXPECT_GT(double(buildingsChanged), 0.5 * double(buildings));
+    // Kuwahara on the streets' asphalt changes fewer pixels (smooth texture) but many.
+    EXPECT_GT(double(streetsChanged), 0.2 * double(streets));
+    EXPECT_EQ(restChanged, 0u);
+}

@@ -9,6 +9,7 @@
 #include <osgLoA/abstraction/AbstractionNode>
 #include <osgLoA/abstraction/AbstractionStyle>
 #include <osgLoA/abstraction/PencilTextures>
+#include <osgLoA/filtering/DoGFilter>
 #include <osgLoA/filtering/FilterImage>
 #include <osgLoA/filtering/KuwaharaFilter>
 #include <osgLoA/filtering/SobelFilter>
@@ -24,6 +25,7 @@
 #include <osg/Texture2D>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 
 using namespace osgLoA;
@@ -450,4 +452,162 @@ TEST(AbstractionNodeGLTest, WorldAndObjectFociProjectToTheirPixels)
     node->addChild(scene.get());
     render(node.get());
     EXPECT_NE(node->getLastError().find("99"), std::string::npos) << node->getLastError();
+}
+
+TEST(AbstractionNodeGLTest, ViewportOffsetReadsTheNodesOwnTargets)
+{
+    // The same view in a 54 x 42 window, and in the 54 x 42 viewport at (10, 6) of a 64 x 48 one:
+    // the composite reads its viewport-sized targets from the viewport's origin.
+    osg::ref_ptr<osg::Node> scene = texturedScene();
+    auto view = [&](int ox, int oy, int ww, int wh)
+    {
+        OffscreenRenderer::Settings s;
+        s.width = ww;
+        s.height = wh;
+        s.clearColor = osg::Vec4(0, 0, 0, 1);
+        osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(s);
+        r->getCamera()->setViewport(ox, oy, 54, 42);
+        r->getCamera()->setProjectionMatrixAsOrtho(0, 54, 0, 42, 0.1, 10);
+        r->getCamera()->setViewMatrix(osg::Matrix::identity());
+        r->getCamera()->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        osg::ref_ptr<AbstractionNode> node = new AbstractionNode;
+        node->setStyle(AbstractionStyle::createBuiltin("kuwahara3").get());
+        node->addChild(scene.get());
+        r->setSceneData(node.get());
+        return r->renderImage();
+    };
+    osg::ref_ptr<osg::Image> alone = view(0, 0, 54, 42), offset = view(10, 6, 64, 48);
+    int differing = 0;
+    for (int y = 0; y < 42; ++y)
+        for (int x = 0; x < 54; ++x)
+            differing += pixel(*alone, x, y) != pixel(*offset, x + 10, y + 6);
+    EXPECT_EQ(differing, 0);
+}
+
+TEST(AbstractionNodeGLTest, StyleEditedInPlaceTakesEffectAndIsChecked)
+{
+    osg::ref_ptr<osg::Node> scene = texturedScene();
+    // The references first: two renderers alive at once would share GL object slots (one
+    // context id), and the first one's destruction would release the other's objects.
+    osg::ref_ptr<AbstractionStyle> five = AbstractionStyle::createBuiltin("kuwahara3");
+    five->setKuwaharaRadius(4);
+    osg::ref_ptr<osg::Image> fresh = renderStyled(scene.get(), five.get());
+    osg::ref_ptr<osg::Image> plain = render(scene.get());
+
+    osg::ref_ptr<AbstractionStyle> style = AbstractionStyle::createBuiltin("kuwahara3");
+    osg::ref_ptr<AbstractionNode> node = new AbstractionNode;
+    node->setStyle(style.get());
+    node->addChild(scene.get());
+    osg::ref_ptr<OffscreenRenderer> r = renderer();
+    r->setSceneData(node.get());
+    osg::ref_ptr<osg::Image> first = r->renderImage();
+    style->setKuwaharaRadius(4); // in place, no setStyle
+    osg::ref_ptr<osg::Image> second = r->renderImage();
+    int changed = 0, same = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+        {
+            changed += pixel(*first, x, y) != pixel(*second, x, y);
+            same += pixel(*second, x, y) == pixel(*fresh, x, y);
+        }
+    EXPECT_GT(changed, W * H / 4);
+    EXPECT_EQ(same, W * H);
+    // An impossible value set in place is reported and the children are drawn unabstracted.
+    style->setKuwaharaIterations(7);
+    osg::ref_ptr<osg::Image> refused = r->renderImage();
+    EXPECT_NE(node->getLastError().find("kuwaharaIterations"), std::string::npos) << node->getLastError();
+    int plainSame = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            plainSame += pixel(*refused, x, y) == pixel(*plain, x, y);
+    EXPECT_EQ(plainSame, W * H);
+    // Fixed again: the error clears.
+    style->setKuwaharaIterations(1);
+    r->renderImage();
+    EXPECT_EQ(node->getLastError(), "");
+}
+
+TEST(AbstractionNodeGLTest, AFailedImageStageShowsTheNormalFrame)
+{
+    // A broken levels shader on OSG_FILE_PATH: the engine cannot build the pass. The error is
+    // reported and the frame is the normal pass, not undefined texels.
+    const std::string dir = loatest::freshDirectory("AbstractionBrokenShader");
+    std::ofstream(dir + "/loa_filter_abstraction_levels.comp.glsl") << "#version 430\nthis is not GLSL\n";
+    loatest::setFilePath(dir);
+    osg::ref_ptr<osg::Node> scene = texturedScene();
+    osg::ref_ptr<AbstractionStyle> style = AbstractionStyle::createBuiltin("adaptive");
+    style->setEdgeDetector(AbstractionStyle::NO_EDGES);
+    style->setBleaching(0.0f);
+    osg::ref_ptr<AbstractionNode> node = new AbstractionNode;
+    node->setStyle(style.get());
+    node->addChild(scene.get());
+    osg::ref_ptr<osg::Image> out = render(node.get());
+    loatest::setFilePath("");
+    EXPECT_NE(node->getLastError().find("loa_filter_abstraction_levels"), std::string::npos)
+        << node->getLastError();
+    osg::ref_ptr<osg::Image> plain = render(scene.get());
+    int same = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            same += pixel(*out, x, y) == pixel(*plain, x, y);
+    EXPECT_EQ(same, W * H);
+}
+
+TEST(AbstractionNodeGLTest, DoGEdgesOfTheFrameMatchTheCpuFilter)
+{
+    osg::ref_ptr<osg::Node> scene = texturedScene();
+    const FilterImage frame = FilterImage::fromImage(*render(scene.get()));
+    osg::ref_ptr<AbstractionStyle> style = AbstractionStyle::createBuiltin("dog");
+    osg::ref_ptr<osg::Image> out = renderStyled(scene.get(), style.get());
+    osg::ref_ptr<DoGFilter> dog = new DoGFilter;
+    dog->setFlow(false);
+    dog->setSigmaE(style->getDogSigma());
+    dog->setK(style->getDogRatio());
+    dog->setTau(style->getDogTau());
+    dog->setMode(DoGFilter::EDGES);
+    EXPECT_FLOAT_EQ(style->getDogRatio(), 1.6f); // the Marr-Hildreth ratio of paper 001
+    const FilterImage edges = dog->apply(frame, ImageBorder(WrapMode::Clamp, WrapMode::Clamp));
+    FilterImage ref = frame;
+    std::size_t lines = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+        {
+            const osg::Vec3f c = AbstractionFormulas::overlay(
+                osg::Vec3f(frame.get(x, y)[0], frame.get(x, y)[1], frame.get(x, y)[2]), edges.get(x, y)[0],
+                style->getEdgeOpacity(), 0.0f);
+            lines += edges.get(x, y)[0] < 0.5f;
+            ref.set(x, y, osg::Vec4f(c, 1.0f));
+        }
+    const auto [fraction, worst] = compare(*out, ref, 2.0f / 255.0f);
+    std::cout << "dog: " << lines << " line pixels, " << fraction * 100.0 << " % over 2/255, max "
+              << worst * 255.0f << "/255" << std::endl;
+    EXPECT_GT(lines, 50u);
+    // The DoG's tanh threshold is steep (phi 2 per L* unit): float differences of 1e-5 in L*
+    // move a pixel on it by at most 1e-4 of grey; 2/255 leaves room for 8-bit output rounding.
+    EXPECT_LE(fraction, 0.002);
+}
+
+TEST(AbstractionNodeGLTest, HybridPencilIsPainterlyTimesPencilToneToTheGamma)
+{
+    // Constant-coloured quads: P is the colour inside them (Kuwahara of a constant); S is what
+    // the pencil style shows. F = P S^2 per pixel (paper 002 Eq. 2).
+    osg::ref_ptr<osg::Node> scene = quadsScene();
+    osg::ref_ptr<AbstractionStyle> pencil = AbstractionStyle::createBuiltin("pencil");
+    osg::ref_ptr<AbstractionStyle> hybrid = AbstractionStyle::createBuiltin("hybrid-pencil");
+    for (AbstractionStyle* s : {pencil.get(), hybrid.get()})
+        s->setPencilScale(1.0f / 64.0f);
+    osg::ref_ptr<osg::Image> S = renderStyled(scene.get(), pencil.get()),
+                             F = renderStyled(scene.get(), hybrid.get());
+    const osg::Vec3f colour(0.8f, 0.6f, 0.4f);
+    int checked = 0, within = 0;
+    for (int y = 12; y < 36; ++y)
+        for (int x = 48; x < 56; ++x, ++checked) // inside the tilted quad, away from its edges
+        {
+            const osg::Vec3f expected = AbstractionFormulas::pencilSketch(colour, pixel(*S, x, y).x(), 2.0f);
+            bool ok = true;
+            for (int c = 0; c < 3; ++c)
+                ok = ok && std::fabs(pixel(*F, x, y)[c] - expected[c]) <= 2.0f / 255.0f;
+            within += ok;
+        }
+    EXPECT_EQ(within, checked);
 }

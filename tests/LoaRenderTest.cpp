@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <vector>
 
 namespace
 {
@@ -27,6 +28,8 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
     const std::string dir = loatest::freshDirectory("LoaRenderTest");
     std::ofstream(dir + "/garbage.osgb") << "this is not an osgb file";
     std::ofstream(dir + "/model.xyz123") << "unknown format";
+    std::ofstream(dir + "/group.osgt") << "#Ascii Scene\n#Version 161\n#Generator OpenSceneGraph 3.6.5\n\n"
+                                          "osg::Group {\n  UniqueID 1\n}\n";
     const Case cases[] = {
         {"/nonexistent/city.osgb", 1, "cannot read '/nonexistent/city.osgb': no such file"},
         {"GARBAGE", 1, "cannot read"},
@@ -45,12 +48,23 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
         {"--city blocksX=0", 2, "blocksX must be in 1..200"},
         {"a.osgb b.osgb", 2, "more than one model"},
         {"--program toon", 2, "unknown --program 'toon'"},
+        {"--style nope", 2, "unknown --style 'nope' (loa-render --list-styles lists them)"},
+        {"--style kuwahara3 --scenario distance", 2, "--style excludes --scenario and --program"},
+        {"--focus 0.5,0.5", 2, "need --style"},
+        {"--style adaptive --focus 0.5", 2, "--focus '0.5' needs 2 comma-separated numbers"},
+        {"--style adaptive --focus 0.5,x", 2, "'x' is not a number"},
+        {"--style adaptive --focus-radii 0.5,0.1", 2, "focus: "},
+        {"--style adaptive --focus-object -1", 2, "--focus-object '-1' is not an integer"},
+        {"--style photorealistic --focus 0.5,0.5", 2, "the focus options apply to image-space"},
+        {"--style /nonexistent/style.osgt", 1, "--style: no file '/nonexistent/style.osgt'"},
+        {"--style NOTASTYLE", 1, "does not hold an osgLoA::AbstractionStyle"},
     };
     for (const Case& c : cases)
     {
         std::string args = c.args;
         if (args == "GARBAGE") args = "'" + dir + "/garbage.osgb'";
         if (args == "XYZ") args = "'" + dir + "/model.xyz123'";
+        if (args == "--style NOTASTYLE") args = "--style '" + dir + "/group.osgt'";
         std::string out;
         const int status = loatest::run(exe() + " --out '" + dir + "/x.png' " + args, out);
         EXPECT_EQ(status, c.status) << c.args << "\n" << out;
@@ -61,12 +75,30 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
     }
 }
 
+TEST(LoaRenderTest, ListStylesPrintsEveryStyleOneALine)
+{
+    std::string out;
+    ASSERT_EQ(loatest::run(exe() + " --list-styles", out), 0) << out;
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    for (std::size_t end; (end = out.find('\n', start)) != std::string::npos; start = end + 1)
+        lines.push_back(out.substr(start, end - start));
+    for (const char* name :
+         {"photorealistic", "abstract", "cartographic", "blueprint", "hidden", "dog", "kuwahara3",
+          "kuwahara5", "kuwahara-dog", "adaptive", "adaptive-segmented", "cel", "pencil", "sobel", "canny",
+          "hybrid-toon", "hybrid-pencil", "adaptive-hybrid-toon", "adaptive-hybrid-pencil"})
+        EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
+                                                                            << out;
+    EXPECT_EQ(lines.size(), 19u) << out;
+}
+
 TEST(LoaRenderTest, HelpDocumentsEveryOption)
 {
     std::string out;
     ASSERT_EQ(loatest::run(exe() + " --help", out), 0);
     for (const char* opt : {"--camera", "--eye", "--center", "--up", "--size", "--frames", "--out", "--stats",
-                            "--samples", "street", "oblique", "top", "horizon"})
+                            "--samples", "street", "oblique", "top", "horizon", "--style", "--list-styles",
+                            "--focus", "--focus-object", "--focus-world", "--focus-radii"})
         EXPECT_NE(out.find(opt), std::string::npos) << opt;
 }
 

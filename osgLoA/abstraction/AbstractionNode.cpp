@@ -15,7 +15,7 @@
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/util/StateSetVisitor>
 
-#include <osg/ColorMask>
+#include <osg/BlendFunc>
 #include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
 #include <osg/Notify>
@@ -121,6 +121,30 @@ osg::Matrixd parentMatrix(const osg::NodePath& path)
     return osg::computeLocalToWorld(osg::NodePath(path.begin(), path.end() - 1));
 }
 
+void setComponent(osg::Uniform& u, int slot, float value)
+{
+    osg::Vec4f v;
+    u.get(v);
+    v[slot] = value;
+    u.set(v);
+}
+
+/** Abstraction nodes nested below `node` along its children (through LoA nodes). */
+int nestedAbstractionNodes(osg::Group& node)
+{
+    int most = 0;
+    for (unsigned i = 0; i < node.getNumChildren(); ++i)
+    {
+        osg::Group* child = node.getChild(i)->asGroup();
+        if (!child) continue;
+        if (dynamic_cast<AbstractionNode*>(child))
+            most = std::max(most, 1 + nestedAbstractionNodes(*child));
+        else if (dynamic_cast<LoANode*>(child))
+            most = std::max(most, nestedAbstractionNodes(*child));
+    }
+    return most;
+}
+
 void setDefine(osg::StateSet& ss, const char* name, int value, bool enabled = true)
 {
     if (enabled)
@@ -145,8 +169,17 @@ struct AbstractionNode::Internals : public osg::Referenced
     mutable osg::buffered_object<PerContext> contexts;
     mutable std::mutex mutex;
     FrameStatistics stats;
-    std::string lastError;
+    std::string lastError;  ///< of the image stages (draw)
+    std::string focusError; ///< of the style and focus (cull)
     osg::ref_ptr<ImageFilter> levels, edges;
+    osg::ref_ptr<osg::Uniform> stagesOk; ///< the display pass shows N when the stages failed
+
+    void setFocusError(const std::string& what)
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!what.empty() && focusError != what) OSG_WARN << "osgLoA::AbstractionNode: " << what << std::endl;
+        focusError = what;
+    }
 
     void fail(const std::string& what)
     {
@@ -211,15 +244,15 @@ void AbstractionNode::build()
             .get(),
         kForce);
     _idState->addUniform(new osg::Uniform("loa_objectId", osg::Vec4f(0, 0, 0, 0)));
-    _idState->addUniform(new osg::Uniform("loa_objectImportance", 0.0f));
-    _idState->addUniform(new osg::Uniform("loa_objectWeight", 0.0f));
+    _idState->addUniform(new osg::Uniform("loa_objectImportance", osg::Vec4f()));
+    _idState->addUniform(new osg::Uniform("loa_objectWeight", osg::Vec4f()));
     _idState->setMode(GL_BLEND, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE);
 
     _shadingState = _shadingCamera->getOrCreateStateSet();
     _shadingProgram = ShaderLibrary::createProgram(
         "loa_abstraction_shading", {"loa_abstraction_object.vert.glsl", "loa_abstraction_shading.frag.glsl"});
     _shadingState->setAttributeAndModes(_shadingProgram.get(), kForce);
-    _shadingState->addUniform(new osg::Uniform("loa_objectImportance", 0.0f));
+    _shadingState->addUniform(new osg::Uniform("loa_objectImportance", osg::Vec4f()));
     _shadingState->addUniform(new osg::Uniform("loa_abstraction_pencil", int(UNIT_PENCIL)));
     _shadingState->setMode(GL_BLEND, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE);
 
@@ -251,10 +284,13 @@ void AbstractionNode::build()
         _focusProgram = ShaderLibrary::createProgram(
             "loa_abstraction_focus", {"loa_compose.vert.glsl", "loa_abstraction_focus.frag.glsl"});
         _focusState->setAttributeAndModes(_focusProgram.get(), kForce);
-        _focusState->setAttributeAndModes(new osg::ColorMask(false, false, false, true), kForce);
+        // Alpha only, by blending (RGB: 0 * src + 1 * dst; alpha: src) rather than a colour mask:
+        // OSG restores a colour mask lazily, so a mask left set would make the next camera's
+        // clear skip RGB.
+        _focusState->setAttributeAndModes(new osg::BlendFunc(GL_ZERO, GL_ONE, GL_ONE, GL_ZERO), kForce);
         _focusState->addUniform(new osg::Uniform("loa_abstraction_ids", int(UNIT_IDS)));
         _focusState->addUniform(new osg::Uniform("loa_abstraction_objectData", int(UNIT_OBJECT_DATA)));
-        for (GLenum m : {GLenum(GL_DEPTH_TEST), GLenum(GL_BLEND), GLenum(GL_CULL_FACE), GLenum(GL_LIGHTING)})
+        for (GLenum m : {GLenum(GL_DEPTH_TEST), GLenum(GL_CULL_FACE), GLenum(GL_LIGHTING)})
             _focusState->setMode(m, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE |
                                         osg::StateAttribute::PROTECTED);
     }
@@ -282,6 +318,12 @@ void AbstractionNode::build()
                                   "loa_abstraction_base"};
         for (int i = 0; i < 7; ++i)
             _displayState->addUniform(new osg::Uniform(samplers[i], i), osg::StateAttribute::OVERRIDE);
+        _internals->stagesOk = new osg::Uniform("loa_abstraction_stagesOk", true);
+        _internals->stagesOk->setDataVariance(osg::Object::DYNAMIC);
+        _displayState->addUniform(_internals->stagesOk.get(), osg::StateAttribute::OVERRIDE);
+        // Drawn before the rest of the camera above (the node is meant to hold the scene): the
+        // composite writes no depth, so what is drawn after it appears in front of it.
+        _displayState->setRenderBinDetails(-10, "RenderBin");
         for (GLenum m : {GLenum(GL_DEPTH_TEST), GLenum(GL_BLEND), GLenum(GL_CULL_FACE), GLenum(GL_LIGHTING)})
             _displayState->setMode(m, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE |
                                           osg::StateAttribute::PROTECTED);
@@ -344,7 +386,9 @@ AbstractionNode::FrameStatistics AbstractionNode::getLastFrameStatistics() const
 std::string AbstractionNode::getLastError() const
 {
     std::lock_guard<std::mutex> lock(_internals->mutex);
-    return _internals->lastError;
+    if (_internals->focusError.empty()) return _internals->lastError;
+    if (_internals->lastError.empty()) return _internals->focusError;
+    return _internals->focusError + "; " + _internals->lastError;
 }
 
 namespace
@@ -392,7 +436,9 @@ void AbstractionNode::configure()
     key << n.ids << n.shading << n.painterly << n.edges << n.base << n.unshaded << n.weighted << ' '
         << int(s.getShading()) << ' ' << int(s.getEdgeDetector()) << ' ' << int(s.getCombination()) << ' '
         << int(s.getAdaptivity()) << ' ' << s.getSegmentation() << s.getSilhouettes() << ' '
-        << s.getPencilLevels();
+        << s.getPencilLevels() << ' ' << s.getKuwaharaRadius() << ' ' << s.getKuwaharaIterations() << ' '
+        << s.getKuwaharaIterationsFocus() << ' ' << int(s.getEdgeSource()) << ' ' << s.getDogSigma() << ' '
+        << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getCannyLow() << ' ' << s.getCannyHigh();
     if (key.str() == _configuredKey) return;
     _configuredKey = key.str();
 
@@ -410,8 +456,8 @@ void AbstractionNode::configure()
     }
 
     setDefine(*_shadingState, "LOA_SHADING", int(s.getShading()), n.shading);
-    if (s.getAdaptivity() == AbstractionStyle::OBJECT_FOCUS)
-        _shadingState->setDefine("LOA_ADAPTIVE");
+    if (s.getAdaptivity() == AbstractionStyle::OBJECT_FOCUS && s.getShading() == AbstractionStyle::CEL)
+        _shadingState->setDefine("LOA_ADAPTIVE"); // adaptive cel levels; pencil levels are fixed
     else
         _shadingState->removeDefine("LOA_ADAPTIVE");
     if (s.getShading() == AbstractionStyle::PENCIL)
@@ -564,7 +610,7 @@ void AbstractionNode::resize(int width, int height)
     auto bind = [&](osg::StateSet& ss, unsigned unit, osg::Texture2D* t)
     {
         if (t)
-            ss.setTextureAttributeAndModes(unit, t, kForce);
+            ss.setTextureAttribute(unit, t, osg::StateAttribute::OVERRIDE | osg::StateAttribute::PROTECTED);
         else
             ss.removeTextureAttribute(unit, osg::StateAttribute::TEXTURE);
     };
@@ -607,6 +653,8 @@ void AbstractionNode::collectObjects()
 {
     _objectsDirty = false;
     _objects.clear();
+    for (osg::StateSet* ss : {_idState.get(), _shadingState.get()})
+        ss->getOrCreateUniform("loa_abstraction_slot", osg::Uniform::INT)->set(_slot);
     // Which StateSets carry a base texture (the unshaded pass samples exactly those).
     StateSetVisitor textures(
         [](osg::StateSet& ss)
@@ -626,14 +674,24 @@ void AbstractionNode::collectObjects()
         o.node = node;
         o.drawable = d;
         const unsigned number = unsigned(_objects.size()) + 1;
-        osg::ref_ptr<osg::Uniform> idU = new osg::Uniform("loa_objectId", idColor(number));
-        o.importance = new osg::Uniform("loa_objectImportance", 0.0f);
-        o.weight = new osg::Uniform("loa_objectWeight", 0.0f);
-        o.importance->setDataVariance(osg::Object::DYNAMIC);
-        o.weight->setDataVariance(osg::Object::DYNAMIC);
-        ss->addUniform(idU.get());
-        ss->addUniform(o.importance.get());
-        ss->addUniform(o.weight.get());
+        // Nested abstraction nodes share the objects' uniforms (the same objects in the same
+        // order give the same numbers); each writes its own component of the vec4s.
+        auto shared = [&](const char* name, const osg::Vec4f& value, bool keep)
+        {
+            osg::ref_ptr<osg::Uniform> u = ss->getUniform(name);
+            if (!u.valid() || u->getType() != osg::Uniform::FLOAT_VEC4)
+            {
+                u = new osg::Uniform(name, value);
+                u->setDataVariance(osg::Object::DYNAMIC);
+                ss->addUniform(u.get());
+            }
+            else if (!keep)
+                u->set(value);
+            return u;
+        };
+        shared("loa_objectId", idColor(number), false);
+        o.importance = shared("loa_objectImportance", osg::Vec4f(), true);
+        o.weight = shared("loa_objectWeight", osg::Vec4f(), true);
         _objects.push_back(o);
     };
     FeatureIndex index;
@@ -676,8 +734,11 @@ void AbstractionNode::updateFocus(osgUtil::CullVisitor& cv)
     _focusObject = -1;
     bool haveCentre = false;
     osg::Vec3d centre;
+    const osg::Matrixd mvp = osg::Matrixd(*cv.getModelViewMatrix()) * osg::Matrixd(*cv.getProjectionMatrix());
     auto project = [&](const osg::Vec3d& p)
     {
+        const osg::Vec4d clip = osg::Vec4d(p, 1.0) * mvp;
+        if (clip.w() <= 0.0) return osg::Vec2f(-1e6f, -1e6f); // behind the eye: off screen
         const osg::Vec3d w = p * mvpw;
         return osg::Vec2f(float(w.x()) - windowOrigin.x(), float(w.y()) - windowOrigin.y());
     };
@@ -743,15 +804,17 @@ void AbstractionNode::updateFocus(osgUtil::CullVisitor& cv)
         }
         else
         {
-            _internals->fail("the focus object id " + std::to_string(f.getObjectId()) +
-                             " is not among the node's objects; no focus (strongest abstraction everywhere)");
+            _internals->setFocusError("the focus object id " + std::to_string(f.getObjectId()) +
+                                      " is not among the node's objects; no focus (strongest abstraction "
+                                      "everywhere)");
             _focusPixel = osg::Vec2f(-1e6f, -1e6f);
         }
         break;
     }
     const double diameter = 2.0 * double(getBound().radius());
     for (Object& o : _objects)
-        o.importance->set(haveCentre ? f.objectImportance(o.centre, centre, diameter) : 0.0f);
+        setComponent(*o.importance, _slot,
+                     haveCentre ? f.objectImportance(o.centre, centre, diameter) : 0.0f);
 
     // Uniforms of the passes.
     _focusState->getOrCreateUniform("loa_abstraction_focusPixel", osg::Uniform::FLOAT_VEC2)->set(_focusPixel);
@@ -777,6 +840,8 @@ void AbstractionNode::updateFocus(osgUtil::CullVisitor& cv)
         ->set(s.getPencilScale());
 
     osg::StateSet& d = *_displayState;
+    d.getOrCreateUniform("loa_abstraction_origin", osg::Uniform::INT_VEC2)
+        ->set(int(windowOrigin.x()), int(windowOrigin.y()));
     d.getOrCreateUniform("loa_abstraction_edgeOpacity", osg::Uniform::FLOAT)->set(s.getEdgeOpacity());
     d.getOrCreateUniform("loa_abstraction_edgeOpacityFar", osg::Uniform::FLOAT)->set(s.getEdgeOpacityFar());
     d.getOrCreateUniform("loa_abstraction_bleaching", osg::Uniform::FLOAT)->set(s.getBleaching());
@@ -794,11 +859,11 @@ void AbstractionNode::updateWeights()
     if (!_scenarioNode.lock(loa))
     {
         for (Object& o : _objects)
-            o.weight->set(1.0f);
+            setComponent(*o.weight, _slot, 1.0f);
         return;
     }
     for (Object& o : _objects)
-        o.weight->set(0.0f);
+        setComponent(*o.weight, _slot, 0.0f);
     const ScenarioEvaluator* ev = loa->getEvaluator();
     const UsageScenario* scenario = loa->getScenario();
     if (!ev || !ev->isBound() || !scenario) return;
@@ -812,7 +877,7 @@ void AbstractionNode::updateWeights()
             if (scenario->getConfigurations()[m[k].configuration]->getStyle() == _scenarioStyle)
                 w += m[k].weight;
         const int i = findObject(index.entries()[fs.entry].feature->getId());
-        if (i >= 0) _objects[std::size_t(i)].weight->set(std::min(w, 1.0f));
+        if (i >= 0) setComponent(*_objects[std::size_t(i)].weight, _slot, std::min(w, 1.0f));
     }
 }
 
@@ -826,7 +891,24 @@ void AbstractionNode::traverse(osg::NodeVisitor& nv)
     }
     const osg::Viewport* vp = cv->getViewport();
     if (!vp || vp->width() < 1.0 || vp->height() < 1.0) return;
-    configure();
+    try
+    {
+        // The style may have been edited in place since setStyle.
+        _style->validate();
+        configure();
+        if (_objectsDirty) _slot = nestedAbstractionNodes(*this);
+        if (_slot > 3)
+            throw std::invalid_argument("more than 4 abstraction nodes nested in one another (their objects "
+                                        "share 4 uniform components)");
+    }
+    catch (const std::exception& e)
+    {
+        _internals->setFocusError(std::string("style '") + _style->getName() + "': " + e.what() +
+                                  "; drawing the children unabstracted");
+        osg::Group::traverse(nv);
+        return;
+    }
+    _internals->setFocusError("");
     resize(int(vp->width()), int(vp->height()));
     const Needs n = needsOf(*_style, _scenarioNode.valid());
     const bool objectFocus = _style->getFocus()->getMode() == AbstractionFocus::OBJECT;
@@ -874,18 +956,23 @@ void AbstractionNode::traverse(osg::NodeVisitor& nv)
 void AbstractionNode::runImageStages(osg::RenderInfo& renderInfo) const
 {
     osg::State& state = *renderInfo.getState();
+
     const unsigned id = state.getContextID();
     Internals::PerContext& c = _internals->contexts[id];
     osg::ref_ptr<ImageFilter> levels = _internals->levels, edges = _internals->edges;
     unsigned runs = 0;
     std::size_t texels = 0;
-    if ((!levels.valid() && !edges.valid()) || c.engineFailed)
+    if (!levels.valid() && !edges.valid())
     {
         std::lock_guard<std::mutex> lock(_internals->mutex);
         _internals->stats.filterRuns = 0;
         _internals->stats.filterTexels = 0;
+        _internals->lastError.clear();
+        _internals->stagesOk->set(true);
         return;
     }
+    _internals->stagesOk->set(false); // until the stages ran: a failure shows the normal frame
+    if (c.engineFailed) return;
     auto object = [&](osg::Texture2D* t) -> osg::Texture::TextureObject*
     {
         if (!t) return nullptr;
@@ -944,6 +1031,8 @@ void AbstractionNode::runImageStages(osg::RenderInfo& renderInfo) const
         std::lock_guard<std::mutex> lock(_internals->mutex);
         _internals->stats.filterRuns = runs;
         _internals->stats.filterTexels = texels;
+        _internals->lastError.clear();
+        _internals->stagesOk->set(true);
     }
     catch (const std::exception& ex)
     {
