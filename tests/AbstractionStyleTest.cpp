@@ -299,6 +299,8 @@ TEST(AbstractionStyleTest, ValidateRefusesEachBadField)
         {[](S& s) { s.setAmbient(1.5f); }, "ambient"},
         {[](S& s) { s.setPencilScale(0.0f); }, "pencilScale"},
         {[](S& s) { s.setPencilScale(65.0f); }, "pencilScale"},
+        {[](S& s) { s.setPencilAnisotropy(0.5f); }, "pencilAnisotropy"},
+        {[](S& s) { s.setPencilAnisotropy(17.0f); }, "pencilAnisotropy"},
         {[](S& s) { s.setKuwaharaRadius(-1); }, "kuwaharaRadius"},
         {[](S& s) { s.setKuwaharaRadius(17); }, "kuwaharaRadius"},
         {[](S& s) { s.setKuwaharaIterations(0); }, "kuwaharaIterations"},
@@ -366,6 +368,7 @@ TEST(AbstractionStyleTest, ModifiedStyleSurvivesOsgtAndOsgbRoundTrips)
     s->setPencilLevels(6);
     s->setAmbient(0.25f);
     s->setPencilScale(3.5f);
+    s->setPencilAnisotropy(8.0f);
     s->setKuwaharaRadius(3);
     s->setKuwaharaIterations(3);
     s->setKuwaharaIterationsFocus(2);
@@ -415,6 +418,7 @@ TEST(AbstractionStyleTest, ModifiedStyleSurvivesOsgtAndOsgbRoundTrips)
         EXPECT_EQ(b->getPencilLevels(), 6);
         EXPECT_FLOAT_EQ(b->getAmbient(), 0.25f);
         EXPECT_FLOAT_EQ(b->getPencilScale(), 3.5f);
+        EXPECT_FLOAT_EQ(b->getPencilAnisotropy(), 8.0f);
         EXPECT_EQ(b->getKuwaharaRadius(), 3);
         EXPECT_EQ(b->getKuwaharaIterations(), 3);
         EXPECT_EQ(b->getKuwaharaIterationsFocus(), 2);

@@ -436,9 +436,10 @@ void AbstractionNode::configure()
     key << n.ids << n.shading << n.painterly << n.edges << n.base << n.unshaded << n.weighted << ' '
         << int(s.getShading()) << ' ' << int(s.getEdgeDetector()) << ' ' << int(s.getCombination()) << ' '
         << int(s.getAdaptivity()) << ' ' << s.getSegmentation() << s.getSilhouettes() << ' '
-        << s.getPencilLevels() << ' ' << s.getKuwaharaRadius() << ' ' << s.getKuwaharaIterations() << ' '
-        << s.getKuwaharaIterationsFocus() << ' ' << int(s.getEdgeSource()) << ' ' << s.getDogSigma() << ' '
-        << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getCannyLow() << ' ' << s.getCannyHigh();
+        << s.getPencilLevels() << ' ' << s.getPencilAnisotropy() << ' ' << s.getKuwaharaRadius() << ' '
+        << s.getKuwaharaIterations() << ' ' << s.getKuwaharaIterationsFocus() << ' ' << int(s.getEdgeSource())
+        << ' ' << s.getDogSigma() << ' ' << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getCannyLow()
+        << ' ' << s.getCannyHigh();
     if (key.str() == _configuredKey) return;
     _configuredKey = key.str();
 
@@ -478,6 +479,7 @@ void AbstractionNode::configure()
         _pencil->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
         _pencil->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
         _pencil->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+        _pencil->setMaxAnisotropy(s.getPencilAnisotropy()); // AbstractionStyle: quality against cost
         _shadingState->setTextureAttributeAndModes(UNIT_PENCIL, _pencil.get(), kForce);
     }
     else

@@ -205,15 +205,15 @@ AbstractionStyle::AbstractionStyle() : _focus(new AbstractionFocus) {}
 AbstractionStyle::AbstractionStyle(const AbstractionStyle& o, const osg::CopyOp& copyop)
     : osg::Object(o, copyop), _description(o._description), _normalPass(o._normalPass), _shading(o._shading),
       _celLevels(o._celLevels), _pencilLevels(o._pencilLevels), _ambient(o._ambient),
-      _pencilScale(o._pencilScale), _kuwaharaRadius(o._kuwaharaRadius),
-      _kuwaharaIterations(o._kuwaharaIterations), _kuwaharaIterationsFocus(o._kuwaharaIterationsFocus),
-      _edgeDetector(o._edgeDetector), _edgeSource(o._edgeSource), _dogSigma(o._dogSigma),
-      _dogRatio(o._dogRatio), _dogTau(o._dogTau), _sobelThreshold(o._sobelThreshold),
-      _sobelThresholdFar(o._sobelThresholdFar), _cannyLow(o._cannyLow), _cannyHigh(o._cannyHigh),
-      _silhouettes(o._silhouettes), _edgeOpacity(o._edgeOpacity), _edgeOpacityFar(o._edgeOpacityFar),
-      _combination(o._combination), _brightening(o._brightening), _pencilGamma(o._pencilGamma),
-      _adaptivity(o._adaptivity), _segmentation(o._segmentation), _bleaching(o._bleaching),
-      _celLevelsFar(o._celLevelsFar), _shadingAtFocus(o._shadingAtFocus),
+      _pencilScale(o._pencilScale), _pencilAnisotropy(o._pencilAnisotropy),
+      _kuwaharaRadius(o._kuwaharaRadius), _kuwaharaIterations(o._kuwaharaIterations),
+      _kuwaharaIterationsFocus(o._kuwaharaIterationsFocus), _edgeDetector(o._edgeDetector),
+      _edgeSource(o._edgeSource), _dogSigma(o._dogSigma), _dogRatio(o._dogRatio), _dogTau(o._dogTau),
+      _sobelThreshold(o._sobelThreshold), _sobelThresholdFar(o._sobelThresholdFar), _cannyLow(o._cannyLow),
+      _cannyHigh(o._cannyHigh), _silhouettes(o._silhouettes), _edgeOpacity(o._edgeOpacity),
+      _edgeOpacityFar(o._edgeOpacityFar), _combination(o._combination), _brightening(o._brightening),
+      _pencilGamma(o._pencilGamma), _adaptivity(o._adaptivity), _segmentation(o._segmentation),
+      _bleaching(o._bleaching), _celLevelsFar(o._celLevelsFar), _shadingAtFocus(o._shadingAtFocus),
       _focus((copyop.getCopyFlags() & osg::CopyOp::DEEP_COPY_OBJECTS)
                  ? new AbstractionFocus(*o._focus, copyop)
                  : o._focus.get())
@@ -233,6 +233,7 @@ void AbstractionStyle::validate() const
     checkInt("pencilLevels", _pencilLevels, 2, 8);
     checkFloat("ambient", _ambient, 0.0f, 1.0f);
     checkFloat("pencilScale", _pencilScale, 0.0f, 64.0f, true);
+    checkFloat("pencilAnisotropy", _pencilAnisotropy, 1.0f, 16.0f);
     if (_kuwaharaRadius != 0) checkInt("kuwaharaRadius", _kuwaharaRadius, 1, 16);
     checkInt("kuwaharaIterations", _kuwaharaIterations, 1, 3);
     checkInt("kuwaharaIterationsFocus", _kuwaharaIterationsFocus, 0, _kuwaharaIterations);

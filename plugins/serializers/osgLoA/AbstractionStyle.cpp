@@ -28,6 +28,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_AbstractionStyle, new osgLoA::AbstractionStyle, o
     ADD_INT_SERIALIZER(PencilLevels, 4);
     ADD_FLOAT_SERIALIZER(Ambient, 0.35f);
     ADD_FLOAT_SERIALIZER(PencilScale, 1.0f);
+    ADD_FLOAT_SERIALIZER(PencilAnisotropy, 1.0f);
     ADD_INT_SERIALIZER(KuwaharaRadius, 0);
     ADD_INT_SERIALIZER(KuwaharaIterations, 1);
     ADD_INT_SERIALIZER(KuwaharaIterationsFocus, 0);
