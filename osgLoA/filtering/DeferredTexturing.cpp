@@ -2,6 +2,7 @@
 #include <osgLoA/filtering/DeferredTexturing>
 
 #include "../compositing/RenderTarget.h"
+#include "../render/GLProgramBuild.h"
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/util/StateSetVisitor>
@@ -199,38 +200,14 @@ private:
 
 GLuint compileCompute(osg::GLExtensions* ext, const std::string& name)
 {
-    const std::string source = ShaderLibrary::getSource(name).text;
-    GLuint sh = ext->glCreateShader(GL_COMPUTE_SHADER);
-    const char* text = source.c_str();
-    ext->glShaderSource(sh, 1, &text, nullptr);
-    ext->glCompileShader(sh);
-    GLint ok = 0;
-    ext->glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     std::string log;
-    if (!ok)
-    {
-        GLint len = 0;
-        ext->glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-        log.assign(std::size_t(std::max(len, 1)), '\0');
-        ext->glGetShaderInfoLog(sh, len, nullptr, &log[0]);
-        ext->glDeleteShader(sh);
+    const GLuint sh =
+        detail::compileShaderStage(ext, GL_COMPUTE_SHADER, ShaderLibrary::getSource(name).text, log);
+    if (!sh)
         throw GpuFilterError("DeferredTexturing: shader '" + name +
-                             "' (compute stage) failed to compile: " + log.c_str());
-    }
-    GLuint p = ext->glCreateProgram();
-    ext->glAttachShader(p, sh);
-    ext->glLinkProgram(p);
-    ext->glDeleteShader(sh);
-    ext->glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok)
-    {
-        GLint len = 0;
-        ext->glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-        log.assign(std::size_t(std::max(len, 1)), '\0');
-        ext->glGetProgramInfoLog(p, len, nullptr, &log[0]);
-        ext->glDeleteProgram(p);
-        throw GpuFilterError("DeferredTexturing: program '" + name + "' failed to link: " + log.c_str());
-    }
+                             "' (compute stage) failed to compile: " + log);
+    const GLuint p = detail::linkProgram(ext, {sh}, log);
+    if (!p) throw GpuFilterError("DeferredTexturing: program '" + name + "' failed to link: " + log);
     return p;
 }
 

@@ -1,6 +1,8 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/filtering/FilterCache>
 
+#include "../util/ByteOrder.h"
+
 #include <osg/Notify>
 
 #include <cerrno>
@@ -113,24 +115,6 @@ private:
     unsigned char _carry[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     std::size_t _carried = 0;
 };
-
-void putU32(std::string& s, std::uint32_t v)
-{
-    for (int i = 0; i < 4; ++i)
-        s.push_back(char((v >> (8 * i)) & 0xffu));
-}
-void putU64(std::string& s, std::uint64_t v)
-{
-    for (int i = 0; i < 8; ++i)
-        s.push_back(char((v >> (8 * i)) & 0xffu));
-}
-std::uint64_t getLE(const std::string& s, std::size_t at, int bytes)
-{
-    std::uint64_t v = 0;
-    for (int i = bytes - 1; i >= 0; --i)
-        v = (v << 8) | static_cast<unsigned char>(s[at + std::size_t(i)]);
-    return v;
-}
 
 int levelCountFor(int w, int h)
 {
@@ -319,19 +303,19 @@ std::string FilterCache::encode(const FilterCacheKey& key, const osg::Image& pyr
     }
     out.reserve(48 + 8 * std::size_t(n) + payload);
     out.append(kMagic, 8);
-    putU32(out, FORMAT_VERSION);
-    putU32(out, std::uint32_t(n));
-    putU64(out, key.high);
-    putU64(out, key.low);
+    detail::putLE(out, FORMAT_VERSION, 4);
+    detail::putLE(out, std::uint32_t(n), 4);
+    detail::putLE(out, key.high, 8);
+    detail::putLE(out, key.low, 8);
     int w = pyramid.s(), h = pyramid.t();
     for (int k = 0; k < n; ++k)
     {
-        putU32(out, std::uint32_t(w));
-        putU32(out, std::uint32_t(h));
+        detail::putLE(out, std::uint32_t(w), 4);
+        detail::putLE(out, std::uint32_t(h), 4);
         w = std::max(1, w / 2);
         h = std::max(1, h / 2);
     }
-    putU64(out, payload);
+    detail::putLE(out, payload, 8);
     w = pyramid.s(), h = pyramid.t();
     for (int k = 0; k < n; ++k)
     {
@@ -343,7 +327,7 @@ std::string FilterCache::encode(const FilterCacheKey& key, const osg::Image& pyr
         w = std::max(1, w / 2);
         h = std::max(1, h / 2);
     }
-    putU64(out, fnv1a(kFnvOffset, reinterpret_cast<const unsigned char*>(out.data()), out.size()));
+    detail::putLE(out, fnv1a(kFnvOffset, reinterpret_cast<const unsigned char*>(out.data()), out.size()), 8);
     return out;
 }
 
@@ -360,29 +344,29 @@ osg::ref_ptr<osg::Image> FilterCache::decode(const std::string& bytes, const Fil
         why = "not a filter cache file (bad magic)";
         return nullptr;
     }
-    const std::uint64_t version = getLE(bytes, 8, 4);
+    const std::uint64_t version = detail::getLE(bytes, 8, 4);
     if (version != FORMAT_VERSION)
     {
         why = "format version " + std::to_string(version) + " (this build reads " +
               std::to_string(FORMAT_VERSION) + ")";
         return nullptr;
     }
-    const std::uint64_t n = getLE(bytes, 12, 4);
+    const std::uint64_t n = detail::getLE(bytes, 12, 4);
     if (n < 1 || n > std::uint64_t(MAX_LEVELS))
     {
         why = "implausible level count " + std::to_string(n);
         return nullptr;
     }
     FilterCacheKey stored;
-    stored.high = getLE(bytes, 16, 8);
-    stored.low = getLE(bytes, 24, 8);
+    stored.high = detail::getLE(bytes, 16, 8);
+    stored.low = detail::getLE(bytes, 24, 8);
     const std::size_t header = 32 + 8 * std::size_t(n) + 8;
     if (bytes.size() < header + 8)
     {
         why = "truncated (" + std::to_string(bytes.size()) + " bytes)";
         return nullptr;
     }
-    const std::uint64_t width = getLE(bytes, 32, 4), height = getLE(bytes, 36, 4);
+    const std::uint64_t width = detail::getLE(bytes, 32, 4), height = detail::getLE(bytes, 36, 4);
     if (width < 1 || height < 1 || width > std::uint64_t(FilterImage::maxDimension()) ||
         height > std::uint64_t(FilterImage::maxDimension()) ||
         std::uint64_t(levelCountFor(int(width), int(height))) != n)
@@ -396,8 +380,8 @@ osg::ref_ptr<osg::Image> FilterCache::decode(const std::string& bytes, const Fil
         std::uint64_t w = width, h = height;
         for (std::uint64_t k = 0; k < n; ++k)
         {
-            if (getLE(bytes, 32 + 8 * std::size_t(k), 4) != w ||
-                getLE(bytes, 36 + 8 * std::size_t(k), 4) != h)
+            if (detail::getLE(bytes, 32 + 8 * std::size_t(k), 4) != w ||
+                detail::getLE(bytes, 36 + 8 * std::size_t(k), 4) != h)
             {
                 why = "level " + std::to_string(k) + " has the wrong size";
                 return nullptr;
@@ -412,7 +396,7 @@ osg::ref_ptr<osg::Image> FilterCache::decode(const std::string& bytes, const Fil
         why = "pyramid larger than osg::Image's 32-bit mipmap offsets allow";
         return nullptr;
     }
-    if (getLE(bytes, header - 8, 8) != payload)
+    if (detail::getLE(bytes, header - 8, 8) != payload)
     {
         why = "payload size field does not match the level sizes";
         return nullptr;
@@ -425,7 +409,7 @@ osg::ref_ptr<osg::Image> FilterCache::decode(const std::string& bytes, const Fil
     }
     const std::uint64_t sum =
         fnv1a(kFnvOffset, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size() - 8);
-    if (sum != getLE(bytes, bytes.size() - 8, 8))
+    if (sum != detail::getLE(bytes, bytes.size() - 8, 8))
     {
         why = "checksum mismatch";
         return nullptr;

@@ -1,5 +1,7 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/filtering/GpuFilterEngine>
+
+#include "../render/GLProgramBuild.h"
 #include <osgLoA/render/ShaderLibrary>
 
 #include <osg/GLExtensions>
@@ -140,22 +142,11 @@ struct GpuFilterEngine::Impl
 
     GLuint compile(const std::string& name, const std::string& source)
     {
-        GLuint sh = ext->glCreateShader(GL_COMPUTE_SHADER);
-        const char* text = source.c_str();
-        ext->glShaderSource(sh, 1, &text, nullptr);
-        ext->glCompileShader(sh);
-        GLint ok = 0;
-        ext->glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-        if (!ok)
-        {
-            GLint len = 0;
-            ext->glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-            std::string log(std::size_t(std::max(len, 1)), '\0');
-            ext->glGetShaderInfoLog(sh, len, nullptr, &log[0]);
-            ext->glDeleteShader(sh);
+        std::string log;
+        const GLuint sh = detail::compileShaderStage(ext, GL_COMPUTE_SHADER, source, log);
+        if (!sh)
             throw GpuFilterError("GpuFilterEngine: shader '" + name +
-                                 "' (compute stage) failed to compile: " + log.c_str());
-        }
+                                 "' (compute stage) failed to compile: " + log);
         return sh;
     }
 
@@ -184,24 +175,11 @@ struct GpuFilterEngine::Impl
             ext->glDeleteShader(a);
             throw;
         }
-        GLuint p = ext->glCreateProgram();
-        ext->glAttachShader(p, a);
-        ext->glAttachShader(p, b);
-        ext->glLinkProgram(p);
-        ext->glDeleteShader(a);
-        ext->glDeleteShader(b);
-        GLint ok = 0;
-        ext->glGetProgramiv(p, GL_LINK_STATUS, &ok);
-        if (!ok)
-        {
-            GLint len = 0;
-            ext->glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-            std::string log(std::size_t(std::max(len, 1)), '\0');
-            ext->glGetProgramInfoLog(p, len, nullptr, &log[0]);
-            ext->glDeleteProgram(p);
+        std::string log;
+        const GLuint p = detail::linkProgram(ext, {a, b}, log);
+        if (!p)
             throw GpuFilterError("GpuFilterEngine: program of pass '" + pass.shader +
-                                 "' failed to link: " + log.c_str());
-        }
+                                 "' failed to link: " + log);
         programs[key] = p;
         return p;
     }
