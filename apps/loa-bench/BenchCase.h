@@ -69,3 +69,8 @@ std::vector<Row> filtering(unsigned frames, std::string& renderer);
  *  640x480, 800x600 and 1280x1024: regular rendering and every abstraction style along a short
  *  camera move, as ratios to regular rendering; error = frame-to-frame change (coherence). */
 std::vector<Row> abstraction(unsigned frames, std::string& renderer);
+
+/** Case "palette" (BenchPalette.cpp): paper 003's offline stages on real photographs: clustering
+ *  time against table size (Ward, centroid) and quantization error against the number of colours
+ *  (hierarchical against k-means). */
+std::vector<Row> palette(unsigned frames, std::string& renderer);

@@ -89,6 +89,9 @@ cases:
                  hybrid abstraction style (and regular rendering) along a short camera move
                  at 640x480, 800x600, 1280x1024, as ratios to regular rendering; error =
                  mean per-pixel change between consecutive frames (coherence)
+  palette        paper 003's palette clustering on real photographs: time against table
+                 size (Ward NN-chain, exact centroid) and weighted mean CIELab Delta E
+                 against the number of colours, hierarchical against k-means
   preprocess     paper 004's pre-process, bilateral then DoG on every mip level of 1,520
                  textures of 128x128, as textures per second: OpenCV, our GPU, our CPU on all
                  cores, and the flow-based version on the GPU
@@ -392,7 +395,8 @@ int main(int argc, char** argv)
                                                                {"filters", filters},
                                                                {"preprocess", preprocess},
                                                                {"filtering", filtering},
-                                                               {"abstraction", abstraction}};
+                                                               {"abstraction", abstraction},
+                                                               {"palette", palette}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int
