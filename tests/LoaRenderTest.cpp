@@ -89,7 +89,7 @@ TEST(LoaRenderTest, ListStylesPrintsEveryStyleOneALine)
           "hybrid-toon", "hybrid-pencil", "adaptive-hybrid-toon", "adaptive-hybrid-pencil"})
         EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
                                                                             << out;
-    EXPECT_EQ(lines.size(), 19u) << out;
+    EXPECT_EQ(lines.size(), 20u) << out;
 }
 
 TEST(LoaRenderTest, HelpDocumentsEveryOption)

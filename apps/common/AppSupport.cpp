@@ -240,3 +240,25 @@ void checkCameraOptions(const CameraChoice& c)
 }
 
 } // namespace loa
+
+namespace loa
+{
+osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, const std::string& readerOptions)
+{
+    const std::string ext = osgDB::getLowerCaseFileExtension(path);
+    std::string optionString = readerOptions;
+    if (ext == "osgb" || ext == "osgt" || ext == "osgx")
+        optionString += (optionString.empty() ? "" : " ") + std::string("ForceReadingImage");
+    if (!optionString.empty())
+    {
+        osg::ref_ptr<osgDB::Options> options =
+            osgDB::Registry::instance()->getOptions()
+                ? static_cast<osgDB::Options*>(
+                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
+                : new osgDB::Options;
+        options->setOptionString(optionString);
+        osgDB::Registry::instance()->setOptions(options.get());
+    }
+    return loadModel(path);
+}
+} // namespace loa

@@ -63,6 +63,11 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 /** Loads a model file with osgDB, or throws std::runtime_error with one clear sentence. */
 osg::ref_ptr<osg::Node> loadModel(const std::string& path);
 
+/** loadModel with the reader options `readerOptions` (osgDB option string) and, for OSG's own
+ *  formats (.osgb/.osgt/.osgx), ForceReadingImage: an image file that cannot be read then leaves
+ *  an empty image carrying its file name instead of vanishing (the batch tools report it). */
+osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, const std::string& readerOptions);
+
 /** Applies --camera NAME or --eye/--center/--up, or frames the scene. */
 struct CameraChoice
 {

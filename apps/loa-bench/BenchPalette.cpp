@@ -7,12 +7,18 @@
 //  - quantization error against the number of colours: the weighted mean CIELab Delta E of the
 //    table to its palette at k = 2 .. 64 colours, hierarchical (Ward, centroid) against weighted
 //    k-means (the comparison the paper mentions), on the coffee photograph's table.
+//  - rendering cost of the palette style as a ratio to plain rendering (the paper: 200 fps against
+//    300 fps for plain OpenGL): the demo city with a palette per texture (PaletteMapping::attach,
+//    Ward, 256 levels) drawn by the loa_palette program at a static level of 4, 8, 32 and 256
+//    colours, against the loa_plain program, 1280x720 from the oblique camera, glFinish-ended
+//    frames after a warm-up; error_max of these rows is the time ratio to plain.
 // Times: wall clock of one build per configuration (frames = repetitions of the smaller ones).
 // error_mean: the weighted mean Delta E; error_max: for clustering rows, the number of colours.
 #include "BenchCase.h"
 
 #include <osgLoA/palette/KMeansPalette>
 #include <osgLoA/palette/PaletteHierarchy>
+#include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/palette/TextureHistogram>
 
 #include <osgDB/FileUtils>
@@ -132,6 +138,42 @@ std::vector<Row> palette(unsigned frames, std::string& renderer)
         std::cerr << "  k=" << k << ": ward " << trees[osgLoA::PaletteHierarchy::WARD]->error(k)
                   << ", centroid " << trees[osgLoA::PaletteHierarchy::CENTROID]->error(k) << ", k-means "
                   << err << "\n";
+    }
+    // Rendering cost: the palette program against the plain program on the same city.
+    {
+        osg::ref_ptr<osg::Group> plain = withPlainProgram(demoCity().get());
+        osg::ref_ptr<osg::Node> city = osg::clone(demoCity().get(), osg::CopyOp::DEEP_COPY_STATESETS);
+        const double attachMs = 1000.0 * seconds([&] { osgLoA::PaletteMapping::attach(*city); });
+        osg::ref_ptr<osg::Group> styled = new osg::Group;
+        styled->addChild(city.get());
+        osg::StateSet* ss = styled->getOrCreateStateSet();
+        ss->setAttributeAndModes(osgLoA::PaletteMapping::createProgram().get());
+        ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
+        osg::ref_ptr<osg::Uniform> level = new osg::Uniform("loa_palette_level", 8);
+        ss->addUniform(level.get());
+        ss->addUniform(new osg::Uniform("loa_palette_strategy", 0));
+        const unsigned n = std::max(3u, frames);
+        auto r = makeRenderer(1280, 720, 0, plain.get(), "oblique");
+        renderer = r->getCapabilities().renderer;
+        Row base;
+        base.times = r->timeFrames(n);
+        base.parameters = "render style=plain 1280x720";
+        base.errorMax = "1";
+        rows.push_back(base);
+        std::cerr << "  " << base.parameters << ": " << base.times.median() << " ms (palettes attached in "
+                  << attachMs << " ms)\n";
+        for (int k : {4, 8, 32, 256})
+        {
+            level->set(k);
+            auto rs = makeRenderer(1280, 720, 0, styled.get(), "oblique");
+            Row row;
+            row.times = rs->timeFrames(n);
+            row.parameters = "render style=palette 1280x720 level=" + std::to_string(k) +
+                             " attach_ms=" + number(attachMs, 5);
+            row.errorMax = number(row.times.median() / base.times.median());
+            rows.push_back(row);
+            std::cerr << "  " << row.parameters << ": " << row.times.median() << " ms\n";
+        }
     }
     return rows;
 }

@@ -3,6 +3,7 @@
 // level separately ... once per model") into the filter cache, and can write the model with
 // the filtered textures.
 #include "../common/AppSupport.h"
+#include "../common/ProgressBar.h"
 
 #include <osgLoA/filtering/FilterCache>
 #include <osgLoA/filtering/FilterRegistry>
@@ -178,72 +179,6 @@ std::string sizeText(const osg::Image& image)
     return std::to_string(image.s()) + "x" + std::to_string(image.t());
 }
 
-std::string seconds(double s)
-{
-    char b[32];
-    if (s < 60)
-        std::snprintf(b, sizeof b, "%.1f s", s);
-    else if (s < 3600)
-        std::snprintf(b, sizeof b, "%dm%02ds", int(s) / 60, int(s) % 60);
-    else
-        std::snprintf(b, sizeof b, "%dh%02dm", int(s) / 3600, int(s) / 60 % 60);
-    return b;
-}
-
-/** Progress on stderr: a redrawn bar on a terminal, one line per image otherwise. */
-class Progress
-{
-public:
-    explicit Progress(std::size_t total) : _total(total), _tty(::isatty(2) == 1), _start(clock::now()) {}
-
-    /** One image done; `line` describes it. Messages (skips) always print on their own line. */
-    void done(const std::string& line, bool message)
-    {
-        std::lock_guard<std::mutex> lock(_mutex);
-        ++_done;
-        if (!_tty)
-        {
-            std::cerr << "loa-prefilter: [" << _done << "/" << _total << "] " << line << "\n";
-            return;
-        }
-        if (message)
-            std::cerr << "\r\033[K"
-                      << "loa-prefilter: " << line << "\n";
-        const auto now = clock::now();
-        if (_done == _total || message || now - _lastDraw > std::chrono::milliseconds(100))
-        {
-            draw(now);
-            _lastDraw = now;
-        }
-    }
-    void finish()
-    {
-        std::lock_guard<std::mutex> lock(_mutex);
-        if (_tty && _total > 0) std::cerr << "\n";
-    }
-    double elapsed() const { return std::chrono::duration<double>(clock::now() - _start).count(); }
-
-private:
-    using clock = std::chrono::steady_clock;
-    void draw(clock::time_point now)
-    {
-        const double t = std::chrono::duration<double>(now - _start).count();
-        const double rate = t > 0 ? double(_done) / t : 0.0;
-        const int width = 30;
-        const int filled = _total ? int(double(width) * double(_done) / double(_total)) : width;
-        std::string bar(std::size_t(filled), '#');
-        bar.resize(std::size_t(width), '.');
-        char b[160];
-        std::snprintf(b, sizeof b, "[%s] %zu/%zu images, %.1f/s, ETA %s", bar.c_str(), _done, _total, rate,
-                      rate > 0 ? seconds(double(_total - _done) / rate).c_str() : "?");
-        std::cerr << "\r\033[K" << b << std::flush;
-    }
-    std::mutex _mutex;
-    std::size_t _total, _done = 0;
-    bool _tty;
-    clock::time_point _start, _lastDraw;
-};
-
 int run(const Options& o)
 {
     osg::ref_ptr<osgLoA::ImageFilter> filter;
@@ -260,24 +195,8 @@ int run(const Options& o)
     osg::ref_ptr<osgLoA::FilterCache> cache = new osgLoA::FilterCache(o.out);
     cache->checkWritable();
 
-    // Reader options: the user's, plus ForceReadingImage for OSG's own formats, so that an
-    // image file that cannot be read leaves an empty image carrying its name (reported below)
-    // instead of vanishing.
-    const std::string ext = osgDB::getLowerCaseFileExtension(o.model);
-    std::string optionString = o.readerOptions;
-    if (ext == "osgb" || ext == "osgt" || ext == "osgx")
-        optionString += (optionString.empty() ? "" : " ") + std::string("ForceReadingImage");
-    if (!optionString.empty())
-    {
-        osg::ref_ptr<osgDB::Options> options =
-            osgDB::Registry::instance()->getOptions()
-                ? static_cast<osgDB::Options*>(
-                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
-                : new osgDB::Options;
-        options->setOptionString(optionString);
-        osgDB::Registry::instance()->setOptions(options.get());
-    }
-    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);
+    // An image file that cannot be read leaves an empty image carrying its name (reported below).
+    osg::ref_ptr<osg::Node> scene = loa::loadModelKeepingImageNames(o.model, o.readerOptions);
 
     // Every distinct osg::Texture2D, in traversal order.
     std::vector<osg::ref_ptr<osg::Texture2D>> textures;
@@ -375,7 +294,7 @@ int run(const Options& o)
     std::cerr << "; " << parameters << " on "
               << (onGpu ? std::string("the GPU") : std::to_string(workers) + " thread(s)") << "\n";
 
-    Progress progress(units.size());
+    loa::ProgressBar progress("loa-prefilter", units.size(), "images");
     std::atomic<std::size_t> next{0}, filtered{0}, cached{0}, skipped{0}, storeFailures{0};
     std::vector<osg::ref_ptr<osg::Image>> results(units.size());
     auto work = [&]
@@ -469,7 +388,8 @@ int run(const Options& o)
     std::cerr << "loa-prefilter: " << units.size() << " images: " << filtered << " filtered, " << cached
               << " cached, " << skipped << " skipped";
     if (storeFailures) std::cerr << ", " << storeFailures << " not stored";
-    std::cerr << " in " << seconds(progress.elapsed()) << "; cache " << cache->getDirectory() << "\n";
+    std::cerr << " in " << loa::durationText(progress.elapsed()) << "; cache " << cache->getDirectory()
+              << "\n";
     if (storeFailures) return loa::kFailure;
     return skipped ? kSkipped : loa::kOk;
 }

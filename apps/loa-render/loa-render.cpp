@@ -6,6 +6,7 @@
 #include <osgLoA/abstraction/AbstractionStyleCatalog>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/styles/GraphicStyleCatalog>
@@ -353,6 +354,15 @@ int run(const Options& o)
             throw loa::UsageError("--abuffer-samples " + std::to_string(o.samplesABuffer) +
                                   " exceeds this context's GL_MAX_SAMPLES (" +
                                   std::to_string(caps.maxSamples) + ")");
+        // The "palette" style (paper 003) maps texture colours through per-texture palettes:
+        // build them (texture-object histogram, hierarchical clustering) when a configuration uses it.
+        for (const auto& c : scenario->getConfigurations())
+            if (c->getStyle() == "palette")
+            {
+                const unsigned n = osgLoA::PaletteMapping::attach(*scene);
+                std::cout << "palette style: " << n << " texture palette(s) built\n";
+                break;
+            }
         loaNode = new osgLoA::LoANode;
         loaNode->setScenario(scenario.get());
         loaNode->addChild(scene.get());

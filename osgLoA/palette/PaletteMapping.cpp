@@ -1,0 +1,108 @@
+/* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/palette/PaletteMapping>
+#include <osgLoA/palette/TextureHistogram>
+#include <osgLoA/render/ShaderLibrary>
+
+#include <osg/Drawable>
+#include <osg/NodeVisitor>
+#include <osg/Texture2D>
+#include <osg/UserDataContainer>
+
+#include <functional>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace osgLoA
+{
+
+namespace
+{
+/** Calls f once for every StateSet of nodes and drawables. */
+class EachStateSet : public osg::NodeVisitor
+{
+public:
+    explicit EachStateSet(std::function<void(osg::StateSet&)> f)
+        : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), _f(std::move(f))
+    {
+    }
+    void apply(osg::Node& node) override
+    {
+        visit(node.getStateSet());
+        traverse(node);
+    }
+    void apply(osg::Drawable& drawable) override { visit(drawable.getStateSet()); }
+
+private:
+    void visit(osg::StateSet* ss)
+    {
+        if (ss && _seen.insert(ss).second) _f(*ss);
+    }
+    std::function<void(osg::StateSet&)> _f;
+    std::set<osg::StateSet*> _seen;
+};
+
+const osg::Image* unitZeroImage(const osg::StateSet& ss)
+{
+    const osg::Texture2D* t =
+        dynamic_cast<const osg::Texture2D*>(ss.getTextureAttribute(0, osg::StateAttribute::TEXTURE));
+    return t ? t->getImage() : nullptr;
+}
+} // namespace
+
+unsigned PaletteMapping::attach(osg::Node& scene, const Options& options)
+{
+    if (options.maxLevels == 0) throw std::invalid_argument("maxLevels: 0; it must be at least 1");
+    const std::map<const osg::Image*, std::vector<double>> weights = TextureHistogram::sceneWeights(scene);
+    std::map<const osg::Image*, osg::ref_ptr<TexturePalette>> palettes;
+    for (const auto& kv : weights)
+    {
+        bool any = false;
+        for (double w : kv.second)
+            any = any || w > 0.0;
+        if (!any) continue;
+        palettes[kv.first] = TexturePalette::buildCached(*kv.first, kv.second, options.linkage,
+                                                         options.maxLevels, options.cacheDir);
+    }
+    osg::StateSet* root = scene.getOrCreateStateSet();
+    if (!root->getUniform("loa_hasPalette")) root->addUniform(new osg::Uniform("loa_hasPalette", false));
+    EachStateSet visitor(
+        [&](osg::StateSet& ss)
+        {
+            const osg::Image* image = unitZeroImage(ss);
+            auto it = image ? palettes.find(image) : palettes.end();
+            if (it == palettes.end()) return;
+            TexturePalette* palette = it->second.get();
+            ss.setTextureAttribute(kUnit, palette->getLookupTexture());
+            ss.addUniform(new osg::Uniform("loa_paletteLookup", int(kUnit)));
+            ss.addUniform(new osg::Uniform("loa_hasPalette", true));
+            ss.addUniform(new osg::Uniform("loa_paletteLevels", int(palette->getPaletteImage()->s())));
+            osg::UserDataContainer* udc = ss.getOrCreateUserDataContainer();
+            for (unsigned i = udc->getNumUserObjects(); i-- > 0;)
+                if (dynamic_cast<TexturePalette*>(udc->getUserObject(i))) udc->removeUserObject(i);
+            udc->addUserObject(palette);
+        });
+    scene.accept(visitor);
+    return unsigned(palettes.size());
+}
+
+unsigned PaletteMapping::attach(osg::Node& scene)
+{
+    return attach(scene, Options());
+}
+
+TexturePalette* PaletteMapping::paletteOf(osg::StateSet& stateSet)
+{
+    osg::UserDataContainer* udc = stateSet.getUserDataContainer();
+    if (!udc) return nullptr;
+    for (unsigned i = 0; i < udc->getNumUserObjects(); ++i)
+        if (TexturePalette* p = dynamic_cast<TexturePalette*>(udc->getUserObject(i))) return p;
+    return nullptr;
+}
+
+osg::ref_ptr<osg::Program> PaletteMapping::createProgram()
+{
+    return ShaderLibrary::createProgram("loa_palette", {"loa_plain.vert.glsl", "loa_palette.frag.glsl"});
+}
+
+} // namespace osgLoA
