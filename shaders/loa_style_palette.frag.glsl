@@ -5,13 +5,16 @@
 // times the vertex colour, lit like "photorealistic" (ambient + (1 - ambient) diffuse). The number
 // of colours `level` comes from loa_palette_strategy: 0 static (loa_palette_level, settable per
 // object), 1 depth, 2 orientation (grazing: loa_palette_levelLow, frontal: loa_palette_levelHigh),
-// 3 the feature's interest in the usage scenario (loa_featureInterest, loa_transition.frag.glsl);
+// 3 the interest the usage scenario gives this feature in the configuration being drawn: its
+// metrics (view distance, view angle, region, focus, feature interest) per fragment or per
+// object, loa_featureInterestOf of loa_transition.frag.glsl;
 // always clamped to [1, loa_paletteLevels]. Without a palette or texture: photorealistic.
 uniform sampler2D loa_baseTexture;
 uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform float loa_palette_ambient = 0.35;
-uniform float loa_featureInterest; // declared in loa_transition.frag.glsl too (same type)
+uniform int loa_configuration;                // the configuration this draw belongs to (loa_pass.frag.glsl)
+float loa_featureInterestOf(int j, vec3 p); // loa_transition.frag.glsl
 
 // --- palette lookup (the same text in loa_palette.frag.glsl and loa_style_palette.frag.glsl;
 // ShaderLibrary loads whole files). CPU twins: WeightedColor::toLab / fromLab, PaletteLookup.
@@ -103,7 +106,8 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
         vec4 texel = texture(loa_baseTexture, texCoord);
         if (loa_hasPalette)
         {
-            int level = loa_palette_levelOf(viewPosition, viewNormal, loa_featureInterest);
+            int level = loa_palette_levelOf(viewPosition, viewNormal,
+                                            loa_featureInterestOf(loa_configuration, scenePosition));
             texel.rgb = loa_palette_map(texel.rgb, level);
         }
         base *= texel;

@@ -370,6 +370,8 @@ void main()
 )";
 const char* const kHarnessFragment = R"(#version 450 compatibility
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color);
+// Stands in for loa_transition.frag.glsl's scenario interest (the test uses the static strategy).
+float loa_featureInterestOf(int j, vec3 p) { return 1.0; }
 in vec3 test_viewPosition;
 in vec3 test_viewNormal;
 in vec2 test_texCoord;

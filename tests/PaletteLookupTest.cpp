@@ -18,6 +18,8 @@
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -369,4 +371,32 @@ TEST(PaletteLookupTest, PaletteStyleIsInTheCatalog)
     s->getParameter("loa_palette_far")->get(farPlane);
     EXPECT_EQ(nearPlane, 50.0f);
     EXPECT_EQ(farPlane, 400.0f);
+}
+
+TEST(PaletteLookupTest, PalettesAreStoredWithTheModel)
+{
+    // attach() keeps each TexturePalette in its StateSet's user data: writing the model writes
+    // them (osgdb_serializers_osgloa), and reading it back gives the same palette image.
+    osg::ref_ptr<osg::Texture2D> a = new osg::Texture2D(smallTexture().get());
+    osg::ref_ptr<osg::Geode> root = new osg::Geode;
+    root->getOrCreateStateSet()->setTextureAttributeAndModes(0, a.get());
+    root->addDrawable(texturedQuad(0).get());
+    ASSERT_EQ(PaletteMapping::attach(*root), 1u);
+    const TexturePalette* before = PaletteMapping::paletteOf(*root->getStateSet());
+    ASSERT_TRUE(before);
+    const std::string dir = loatest::freshDirectory("PalettesWithTheModel");
+    for (const char* ext : {"osgb", "osgt"})
+    {
+        const std::string path = dir + "/model." + ext;
+        ASSERT_TRUE(osgDB::writeNodeFile(*root, path)) << path;
+        osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path);
+        ASSERT_TRUE(back.valid()) << path;
+        const TexturePalette* after =
+            back->getStateSet() ? PaletteMapping::paletteOf(*back->getStateSet()) : nullptr;
+        ASSERT_TRUE(after) << ext;
+        const osg::Image& x = *before->getPaletteImage();
+        const osg::Image& y = *after->getPaletteImage();
+        ASSERT_EQ(x.getTotalSizeInBytes(), y.getTotalSizeInBytes());
+        EXPECT_TRUE(std::equal(x.data(), x.data() + x.getTotalSizeInBytes(), y.data())) << ext;
+    }
 }
