@@ -9,15 +9,18 @@
 // metrics (view distance, view angle, region, focus, feature interest) per fragment or per
 // object, loa_featureInterestOf of loa_transition.frag.glsl;
 // always clamped to [1, loa_paletteLevels]. Without a palette or texture: photorealistic.
+// The standalone palette program (osgLoA::PaletteMapping::createProgram) links this file with
+// loa_palette.frag.glsl, whose main calls loa_palette_baseColor: the lookup is written once.
 uniform sampler2D loa_baseTexture;
-uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
+// The drawable has a texture on unit 0 (TransitionRenderer::bind). No initializer here: the
+// standalone program's loa_palette.frag.glsl declares it with the default true, as loa_plain does.
+uniform bool loa_hasTexture;
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform float loa_palette_ambient = 0.35;
 uniform int loa_configuration;                // the configuration this draw belongs to (loa_pass.frag.glsl)
 float loa_featureInterestOf(int j, vec3 p); // loa_transition.frag.glsl
 
-// --- palette lookup (the same text in loa_palette.frag.glsl and loa_style_palette.frag.glsl;
-// ShaderLibrary loads whole files). CPU twins: WeightedColor::toLab / fromLab, PaletteLookup.
+// --- palette lookup. CPU twins: WeightedColor::toLab / fromLab, PaletteLookup.
 layout(binding = 5) uniform sampler2D loa_paletteLookup; // K x K RGBA32F, (L*, a*, b*, 1) per colour
 uniform bool loa_hasPalette = false; // PaletteMapping::attach sets it where a palette is bound
 uniform int loa_paletteLevels = 1;   // K, the number of rows of loa_paletteLookup
@@ -98,20 +101,25 @@ vec3 loa_palette_map(vec3 srgb, int level)
 }
 // --- end of the palette lookup
 
-vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
+// The unlit colour: the base texel mapped through the palette (when the drawable has a texture
+// and a palette), times the vertex colour.
+vec4 loa_palette_baseColor(vec2 texCoord, vec4 color, vec3 viewPosition, vec3 viewNormal, float interest)
 {
     vec4 base = color;
     if (loa_hasTexture)
     {
         vec4 texel = texture(loa_baseTexture, texCoord);
         if (loa_hasPalette)
-        {
-            int level = loa_palette_levelOf(viewPosition, viewNormal,
-                                            loa_featureInterestOf(loa_configuration, scenePosition));
-            texel.rgb = loa_palette_map(texel.rgb, level);
-        }
+            texel.rgb = loa_palette_map(texel.rgb, loa_palette_levelOf(viewPosition, viewNormal, interest));
         base *= texel;
     }
+    return base;
+}
+
+vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
+{
+    vec4 base = loa_palette_baseColor(texCoord, color, viewPosition, viewNormal,
+                                      loa_featureInterestOf(loa_configuration, scenePosition));
     float ambient = loa_palette_ambient;
     float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);
     return vec4(base.rgb * (ambient + (1.0 - ambient) * diffuse), base.a);

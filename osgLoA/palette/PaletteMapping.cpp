@@ -102,7 +102,8 @@ TexturePalette* PaletteMapping::paletteOf(osg::StateSet& stateSet)
 
 osg::ref_ptr<osg::Program> PaletteMapping::createProgram()
 {
-    return ShaderLibrary::createProgram("loa_palette", {"loa_plain.vert.glsl", "loa_palette.frag.glsl"});
+    return ShaderLibrary::createProgram(
+        "loa_palette", {"loa_plain.vert.glsl", "loa_palette.frag.glsl", "loa_style_palette.frag.glsl"});
 }
 
 } // namespace osgLoA
