@@ -262,3 +262,30 @@ osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, cons
     return loadModel(path);
 }
 } // namespace loa
+
+namespace loa
+{
+std::string textureLabel(const osg::Texture2D& texture, std::size_t index)
+{
+    const osg::Image* image = texture.getImage();
+    if (image && !image->getFileName().empty()) return image->getFileName();
+    if (image && !image->getName().empty()) return image->getName();
+    if (!texture.getName().empty()) return "texture '" + texture.getName() + "'";
+    return "texture #" + std::to_string(index + 1) + " (unnamed)";
+}
+
+std::string imageSizeText(const osg::Image& image)
+{
+    return std::to_string(image.s()) + "x" + std::to_string(image.t());
+}
+} // namespace loa
+
+namespace loa
+{
+void takeModelArgument(const std::string& a, std::string& model)
+{
+    if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (see --help)");
+    if (!model.empty()) throw UsageError("more than one model given ('" + model + "' and '" + a + "')");
+    model = a;
+}
+} // namespace loa

@@ -7,6 +7,7 @@
 #include <osgLoA/render/OffscreenRenderer>
 
 #include <osg/Node>
+#include <osg/Texture2D>
 #include <osg/Vec3d>
 
 #include <functional>
@@ -62,6 +63,17 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 
 /** Loads a model file with osgDB, or throws std::runtime_error with one clear sentence. */
 osg::ref_ptr<osg::Node> loadModel(const std::string& path);
+
+/** The tools' positional argument: an argument starting with '-' is an unknown option, else it is
+ *  the model, given once (UsageError otherwise, naming both). */
+void takeModelArgument(const std::string& argument, std::string& model);
+
+/** How the batch tools name a texture in messages: its image's file name, else the image's name,
+ *  else "texture 'NAME'", else "texture #index+1 (unnamed)". */
+std::string textureLabel(const osg::Texture2D& texture, std::size_t index);
+
+/** "WIDTHxHEIGHT" of an image. */
+std::string imageSizeText(const osg::Image& image);
 
 /** loadModel with the reader options `readerOptions` (osgDB option string) and, for OSG's own
  *  formats (.osgb/.osgt/.osgx), ForceReadingImage: an image file that cannot be read then leaves

@@ -104,12 +104,8 @@ Options parse(int argc, char** argv)
             o.save = args.value(a);
         else if (a == "--write-default-rules")
             o.writeRules = args.value(a);
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("unknown option '" + a + "' (see --help)");
-        else if (o.model.empty())
-            o.model = a;
         else
-            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+            loa::takeModelArgument(a, o.model);
     }
     loa::checkCameraOptions(o.camera);
     if (o.writeRules.empty() && o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");

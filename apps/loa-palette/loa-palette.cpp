@@ -157,12 +157,8 @@ Options parse(int argc, char** argv)
             o.readerOptions += (o.readerOptions.empty() ? "" : " ") + args.value(a);
         else if (a == "--quiet")
             o.quiet = true;
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("unknown option '" + a + "' (see --help)");
-        else if (o.model.empty())
-            o.model = a;
         else
-            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+            loa::takeModelArgument(a, o.model);
     }
     if (o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
     if (o.out.empty()) throw loa::UsageError("--out DIR is required (the output directory)");
@@ -178,15 +174,6 @@ struct Unit
     std::vector<osg::ref_ptr<osg::Texture2D>> textures;
     std::string problem; ///< non-empty: skipped
 };
-
-std::string labelOf(const osg::Texture2D& texture, std::size_t index)
-{
-    const osg::Image* image = texture.getImage();
-    if (image && !image->getFileName().empty()) return image->getFileName();
-    if (image && !image->getName().empty()) return image->getName();
-    if (!texture.getName().empty()) return "texture '" + texture.getName() + "'";
-    return "texture #" + std::to_string(index + 1) + " (unnamed)";
-}
 
 /** The file-name stem of a texture: the image's file name without directory and extension,
  *  else the image's or texture's name, else "texture"; characters other than [A-Za-z0-9._-]
@@ -443,7 +430,7 @@ int run(const Options& o)
                 return;
             }
             Unit u;
-            u.label = labelOf(*t2, units.size());
+            u.label = loa::textureLabel(*t2, units.size());
             u.name = stemOf(*t2);
             u.image = image;
             u.textures.push_back(t2);

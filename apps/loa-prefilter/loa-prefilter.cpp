@@ -132,12 +132,8 @@ Options parse(int argc, char** argv)
                 std::cout << n << "  " << osgLoA::FilterRegistry::description(n) << "\n";
             std::exit(loa::kOk);
         }
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("unknown option '" + a + "' (see --help)");
-        else if (o.model.empty())
-            o.model = a;
         else
-            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+            loa::takeModelArgument(a, o.model);
     }
     if (o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
     if (o.filter.empty()) throw loa::UsageError("--filter is required (see --list-filters)");
@@ -164,20 +160,6 @@ struct Unit
     std::vector<osg::ref_ptr<osg::Texture2D>> textures;
     std::string problem; // non-empty: skipped before any work
 };
-
-std::string labelOf(const osg::Texture2D& texture, std::size_t index)
-{
-    const osg::Image* image = texture.getImage();
-    if (image && !image->getFileName().empty()) return image->getFileName();
-    if (image && !image->getName().empty()) return image->getName();
-    if (!texture.getName().empty()) return "texture '" + texture.getName() + "'";
-    return "texture #" + std::to_string(index + 1) + " (unnamed)";
-}
-
-std::string sizeText(const osg::Image& image)
-{
-    return std::to_string(image.s()) + "x" + std::to_string(image.t());
-}
 
 int run(const Options& o)
 {
@@ -226,16 +208,18 @@ int run(const Options& o)
     {
         osg::Texture2D* t = textures[i].get();
         Unit u;
-        u.label = labelOf(*t, i);
+        u.label = loa::textureLabel(*t, i);
         u.image = t->getImage();
         u.border = osgLoA::ImageBorder::of(*t);
         u.textures.push_back(t);
         if (!u.image)
             u.problem = "has no image (its file could not be read?)";
         else if (u.image->s() <= 0 || u.image->t() <= 0 || !u.image->data())
-            u.problem = "is empty (" + sizeText(*u.image) + "): its file is missing, corrupt or unreadable";
+            u.problem =
+                "is empty (" + loa::imageSizeText(*u.image) + "): its file is missing, corrupt or unreadable";
         else if (unsigned(u.image->s()) > o.maxSize || unsigned(u.image->t()) > o.maxSize)
-            u.problem = "is " + sizeText(*u.image) + ", above --max-size " + std::to_string(o.maxSize);
+            u.problem =
+                "is " + loa::imageSizeText(*u.image) + ", above --max-size " + std::to_string(o.maxSize);
         if (!u.problem.empty())
         {
             problems.push_back(u);
@@ -323,12 +307,14 @@ int run(const Options& o)
                 else if (r.source == osgLoA::MipmapFilter::CACHE)
                 {
                     ++cached;
-                    progress.done("cached " + u.label + " " + sizeText(*u.image) + " (" + ms + ")", false);
+                    progress.done("cached " + u.label + " " + loa::imageSizeText(*u.image) + " (" + ms + ")",
+                                  false);
                 }
                 else
                 {
                     ++filtered;
-                    progress.done("filtered " + u.label + " " + sizeText(*u.image) + " (" + ms + ")", false);
+                    progress.done(
+                        "filtered " + u.label + " " + loa::imageSizeText(*u.image) + " (" + ms + ")", false);
                 }
             }
             catch (const std::exception& e)

@@ -136,12 +136,8 @@ Options parse(int argc, char** argv)
         }
         else if (a == "--gl-info")
             o.glInfo = true;
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("unknown option '" + a + "' (see --help)");
-        else if (o.model.empty())
-            o.model = a;
         else
-            throw loa::UsageError("more than one model given ('" + o.model + "' and '" + a + "')");
+            loa::takeModelArgument(a, o.model);
     }
     loa::checkCameraOptions(o.camera);
     if (!o.scenario.empty() && !o.program.empty())

@@ -4,6 +4,8 @@
 #include <osgLoA/palette/TexturePalette>
 #include <osgLoA/palette/WeightedColor>
 
+#include "../compositing/RenderTarget.h"
+
 #include <osg/Notify>
 
 #include <cstdint>
@@ -174,17 +176,10 @@ osg::Texture2D* TexturePalette::getLookupTexture() const
             q[2] = c[2];
             q[3] = 1.0f;
         }
-    osg::ref_ptr<osg::Texture2D> t = new osg::Texture2D(lab.get());
+    // Nearest, clamp-to-edge, no mipmaps: texelFetch reads the exact Lab values.
+    osg::ref_ptr<osg::Texture2D> t = detail::createTargetTexture(GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT);
     t->setName("loa_paletteLookup " + getName());
-    t->setInternalFormat(GL_RGBA32F_ARB);
-    t->setSourceFormat(GL_RGBA);
-    t->setSourceType(GL_FLOAT);
-    t->setFilter(osg::Texture::MIN_FILTER, osg::Texture::NEAREST);
-    t->setFilter(osg::Texture::MAG_FILTER, osg::Texture::NEAREST);
-    t->setWrap(osg::Texture::WRAP_S, osg::Texture::CLAMP_TO_EDGE);
-    t->setWrap(osg::Texture::WRAP_T, osg::Texture::CLAMP_TO_EDGE);
-    t->setResizeNonPowerOfTwoHint(false);
-    t->setUseHardwareMipMapGeneration(false);
+    t->setImage(lab.get());
     _lookup = t;
     return _lookup.get();
 }
