@@ -372,9 +372,8 @@ osg::ref_ptr<osg::Node> AbstractionNode::wrapScenario(LoANode* loa)
 
 int AbstractionNode::findObject(unsigned id) const
 {
-    for (std::size_t i = 0; i < _objects.size(); ++i)
-        if (_objects[i].id == id) return int(i);
-    return -1;
+    const auto it = _objectOfId.find(id);
+    return it == _objectOfId.end() ? -1 : int(it->second);
 }
 
 AbstractionNode::FrameStatistics AbstractionNode::getLastFrameStatistics() const
@@ -655,6 +654,7 @@ void AbstractionNode::collectObjects()
 {
     _objectsDirty = false;
     _objects.clear();
+    _objectOfId.clear();
     for (osg::StateSet* ss : {_idState.get(), _shadingState.get()})
         ss->getOrCreateUniform("loa_abstraction_slot", osg::Uniform::INT)->set(_slot);
     // Which StateSets carry a base texture (the unshaded pass samples exactly those).
@@ -694,6 +694,7 @@ void AbstractionNode::collectObjects()
         shared("loa_objectId", idColor(number), false);
         o.importance = shared("loa_objectImportance", osg::Vec4f(), true);
         o.weight = shared("loa_objectWeight", osg::Vec4f(), true);
+        _objectOfId.emplace(id, unsigned(_objects.size())); // the first object of an id wins
         _objects.push_back(o);
     };
     FeatureIndex index;
@@ -870,14 +871,17 @@ void AbstractionNode::updateWeights()
     const UsageScenario* scenario = loa->getScenario();
     if (!ev || !ev->isBound() || !scenario) return;
     const FeatureIndex& index = loa->getFeatureIndex();
+    // Which configurations draw in this node's style (at most UsageScenario::kMaxConfigurations).
+    std::vector<char> ours;
+    for (const auto& c : scenario->getConfigurations())
+        ours.push_back(c->getStyle() == _scenarioStyle);
     for (const ScenarioEvaluator::FeatureState& fs : ev->features())
     {
         if (fs.entry >= index.size()) continue;
         float w = 0.0f;
         const ScenarioEvaluator::Match* m = ev->matchesOf(fs);
         for (unsigned k = 0; k < fs.numMatches; ++k)
-            if (scenario->getConfigurations()[m[k].configuration]->getStyle() == _scenarioStyle)
-                w += m[k].weight;
+            if (m[k].configuration < ours.size() && ours[m[k].configuration]) w += m[k].weight;
         const int i = findObject(index.entries()[fs.entry].feature->getId());
         if (i >= 0) setComponent(*_objects[std::size_t(i)].weight, _slot, std::min(w, 1.0f));
     }
