@@ -29,7 +29,9 @@ uniform vec2 loa_depthRange;   // near, far
 uniform bool loa_orthographic = false;
 uniform float loa_mergeEpsilon = 2.0e-6; // window depth: fragments this close are one surface
 uniform vec4 loa_edgeThresholds = vec4(0.02, 0.08, 0.25, 0.6); // depth lo/hi (relative), normal lo/hi
-uniform float loa_unsharpScale = 4.0;    // relative depth difference -> darkening
+uniform ivec2 loa_viewportOrigin = ivec2(0); // the pass targets' (0, 0) in window coordinates
+uniform float loa_unsharpGain = 8.0;           // depth difference (scene extents) -> darkening ramp
+uniform float loa_unsharpMaxDarkening = 0.4;   // the most unsharp masking darkens a colour
 
 #ifdef LOA_USE_ABUFFER
 int loa_abufferFetch(ivec2 pixel, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
@@ -165,6 +167,17 @@ vec4 loa_composeWithABuffer(ivec2 p)
     if (loa_usePingPong && loa_pingPongFragment(p, colors[count], depths[count]))
         ++count;
     count = loa_abufferFetch(p, colors, depths, count);
+    if (count == 0 && loa_drawn(p))
+    {
+        // An opaque front surface without a single routed fragment: on renderers that route by
+        // raster coverage (llvmpipe; StencilRoutedABuffer::RASTER_COVERAGE) a pixel that an edge
+        // cuts can lose its fragments. Its neighbours' fragments stand in (at most 4 fetches, only
+        // at such pixels) instead of the background showing through.
+        const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+        ivec2 size = textureSize(loa_gDepth, 0);
+        for (int k = 0; k < 4 && count == 0; ++k)
+            count = loa_abufferFetch(clamp(p + offsets[k], ivec2(0), size - 1), colors, depths, 0);
+    }
     if (count == 0)
         discard;
     return loa_compositeLayers(count, colors, depths, loa_mergeEpsilon);
@@ -173,12 +186,20 @@ vec4 loa_composeWithABuffer(ivec2 p)
 
 void main()
 {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec2 local = gl_FragCoord.xy - vec2(loa_viewportOrigin);
+    ivec2 p = ivec2(local);
 #ifdef LOA_USE_ABUFFER
     vec4 result = loa_composeWithABuffer(p);
 #else
     vec4 result = loa_composeWithoutABuffer(p);
 #endif
+    if (loa_drawn(p) && result.a > 0.0 && result.a < 0.999)
+    {
+        // The front surface is opaque here (the G-buffer's coverage: its visible styles' weights
+        // sum to 1), so the fragments must sum to full opacity; where routing lost some of them
+        // (edge pixels under raster coverage) the ones that arrived stand for the surface.
+        result /= result.a;
+    }
     if (loa_useEdges && loa_drawn(p))
     {
         // Only pixels whose style asks for edges look at their neighbours.
@@ -189,13 +210,24 @@ void main()
     }
     if (loa_useUnsharp && loa_drawn(p))
     {
+        // Unsharp masking of the depth buffer (Luft et al. 2006; paper 004 §3.2.4): the spatial
+        // importance dD = G * D - D, with D the linear depth in units of the scene's depth extent
+        // (far - near of the fitted range: the LoA node's bounding sphere), so that dD is bounded
+        // by 1 and the same building gap darkens the same from near and far. Only the negative
+        // part (the neighbourhood is in front) darkens. The blur is alpha-weighted (a G-buffer
+        // coverage-weighted mean) and the darkening is weighted by the pixel's blend alpha, as the
+        // paper does to reduce ringing; at most loa_unsharpMaxDarkening of the colour is taken, so
+        // no surface goes black beside a near occluder.
         float strength = texelFetch(loa_gNormal, p, 0).a;
-        vec2 blur = texture(loa_unsharpBlur, gl_FragCoord.xy / loa_unsharpScaleToTexture).rg;
+        vec2 blur = texture(loa_unsharpBlur, local / loa_unsharpScaleToTexture).rg;
         if (strength > 0.0 && blur.y > 0.0)
         {
             float d = loa_linearDepth(texelFetch(loa_gDepth, p, 0).r);
-            float delta = (blur.x / blur.y - d) / d; // < 0: the neighbourhood is in front
-            result.rgb *= clamp(1.0 + loa_unsharpScale * strength * min(delta, 0.0), 0.0, 1.0);
+            float extent = max(loa_depthRange.y - loa_depthRange.x, 1.0e-6);
+            float spatialImportance = (blur.x / blur.y - d) / extent; // < 0: the neighbourhood is in front
+            float t = clamp(-loa_unsharpGain * spatialImportance, 0.0, 1.0);
+            float darkening = loa_unsharpMaxDarkening * clamp(strength, 0.0, 1.0) * clamp(result.a, 0.0, 1.0) * t;
+            result.rgb *= 1.0 - darkening;
         }
     }
     loa_outColor = result;

@@ -20,7 +20,10 @@ uniform vec4 loa_styleEdge[16];      // edge colour (rgb) and strength (a) of co
 uniform float loa_styleUnsharp[16];  // unsharp-masking strength of configuration j's style
 uniform uint loa_featureId;
 uniform sampler2D loa_baseTexture;
-uniform bool loa_hasTexture;         // the drawable has a texture on unit 0 (TransitionRenderer::bind)
+uniform bool loa_hasTexture;         // unit 0 has a texture (osgLoA::FixedFunctionUniforms)
+uniform int loa_alphaFunc = 0x0207;  // the model's alpha test (GL comparison; GL_ALWAYS: none)
+uniform float loa_alphaRef = 0.0;
+uniform bool loa_blending = false;   // the model blends (GL_BLEND) where this is drawn
 uniform sampler2D loa_frontDepth;    // the G-buffer's depth (A-buffer and ping-pong passes)
 uniform float loa_depthEpsilon = 2.0e-6; // window-depth tolerance of "at the front surface"
 
@@ -58,6 +61,26 @@ float loa_materialOpacity()
     return a;
 }
 
+// The model's alpha test on its material opacity (osg::AlphaFunc, as the fixed function tests
+// it): alpha-tested cards, fences and billboards keep their shape in every pass and style.
+bool loa_alphaTestPasses()
+{
+    if (loa_alphaFunc == 0x0207)
+        return true;
+    float a = loa_materialOpacity();
+    switch (loa_alphaFunc)
+    {
+    case 0x0200: return false;
+    case 0x0201: return a < loa_alphaRef;
+    case 0x0202: return a == loa_alphaRef;
+    case 0x0203: return a <= loa_alphaRef;
+    case 0x0204: return a > loa_alphaRef;
+    case 0x0205: return a != loa_alphaRef;
+    case 0x0206: return a >= loa_alphaRef;
+    default: return true;
+    }
+}
+
 // Drops fragments hidden behind the G-buffer's front surface. The tolerance grows with the
 // surface's depth slope (two pixels' worth): the multisampled A-buffer and the single-sampled
 // G-buffer do not rasterize the same fragments at every pixel (coverage at sample positions vs.
@@ -91,6 +114,8 @@ void loa_writeGeometry(vec4 edge, float unsharp)
 
 void main()
 {
+    if (!loa_alphaTestPasses())
+        discard;
 #if defined(LOA_PASS_GBUFFER_COLOR)
 #if !defined(LOA_UNFEATURED) && !defined(LOA_COVERED)
     // The feature's one contributing configuration: its weight is 1 wherever it is non-zero.
@@ -114,7 +139,9 @@ void main()
         edge += w * loa_premultipliedEdge(j);
         unsharp += w * loa_styleUnsharp[j];
     }
-    if (visible < 0.999 || loa_materialOpacity() < 0.999)
+    // (Only features of opaque materials come here: without blending the fixed function ignores
+    // alpha, and the alpha test above has dropped what it drops.)
+    if (visible < 0.999)
         discard;
     loa_outColor = vec4(0.0);
     loa_writeGeometry(edge, unsharp);
@@ -124,10 +151,13 @@ void main()
         discard;
     loa_discardBehindFront();
     vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
+    // Alpha makes a surface translucent only where the model blends (GL_BLEND), as in the fixed
+    // function; elsewhere the style's colour is opaque and only the alpha test drops fragments.
+    float a = loa_blending ? c.a : 1.0;
 #ifdef LOA_PASS_ABUFFER
-    loa_abufferWrite(vec4(c.rgb, c.a * w));
+    loa_abufferWrite(vec4(c.rgb, a * w));
 #else
-    if (c.a < 0.5)
+    if (a < 0.5)
         discard; // opaque draws: alpha-tested
     loa_outColor = vec4(c.rgb, w);
 #endif

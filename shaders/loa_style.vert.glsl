@@ -14,7 +14,6 @@ out vec3 loa_viewPosition;
 out vec3 loa_viewNormal;
 out vec2 loa_texCoord;
 out vec4 loa_color;
-
 void main()
 {
     vec4 view = gl_ModelViewMatrix * gl_Vertex;
@@ -24,7 +23,9 @@ void main()
     loa_viewPosition = deformed.xyz / deformed.w;
     vec3 sceneNormal = mat3(loa_viewToScene) * (gl_NormalMatrix * gl_Normal);
     loa_viewNormal = mat3(loa_sceneToView) * loa_deformNormal(sceneNormal);
-    loa_texCoord = gl_MultiTexCoord0.xy;
+    // The texture matrix (osg::TexMat) and the projective divide, as fixed-function texturing.
+    vec4 tc = gl_TextureMatrix[0] * gl_MultiTexCoord0;
+    loa_texCoord = tc.xy / (tc.w != 0.0 ? tc.w : 1.0);
     loa_color = gl_Color;
     gl_Position = gl_ProjectionMatrix * deformed;
 }

@@ -298,6 +298,7 @@ TEST(GraphicStyleGLTest, PhotorealisticIsTextureTimesColourTimesLight)
 {
     loatest::setFilePath("");
     osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("photorealistic");
+    style->getParameter("loa_photorealistic_fixedFunction")->set(false); // the simple lighting
     const float ambient = parameterFloat(*style, "loa_photorealistic_ambient");
     const osg::Vec4ub texel(200, 100, 50, 255);
     Quad q;
@@ -321,6 +322,7 @@ TEST(GraphicStyleGLTest, PhotorealisticMatchesThePlainProgram)
     // The same textured, coloured, lit quad through loa_plain and through the style.
     loatest::setFilePath("");
     osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("photorealistic");
+    style->getParameter("loa_photorealistic_fixedFunction")->set(false); // the simple lighting
     std::vector<osg::Vec4ub> texels;
     for (int i = 0; i < 16; ++i)
         texels.push_back(osg::Vec4ub(16 * i, 255 - 12 * i, (37 * i) % 256, 255));
@@ -353,6 +355,7 @@ TEST(GraphicStyleGLTest, PhotorealisticReadsTheOsgMaterialDiffuseWhenAsked)
     // white colour array; fixed-function lighting would use the material's diffuse colour.
     loatest::setFilePath("");
     osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("photorealistic");
+    style->getParameter("loa_photorealistic_fixedFunction")->set(false); // the simple lighting
     style->getParameter("loa_photorealistic_materialDiffuse")->set(true);
     style->getParameter("loa_photorealistic_ambient")->set(1.0f);
     Quad q;
@@ -367,6 +370,7 @@ TEST(GraphicStyleGLTest, PhotorealisticReadsTheOsgMaterialDiffuseWhenAsked)
     // Without the switch and without a colour array, the vertex colour is the material's
     // diffuse colour already (osg::Material::apply sets the current colour).
     osg::ref_ptr<GraphicStyle> plain = GraphicStyle::createBuiltin("photorealistic");
+    plain->getParameter("loa_photorealistic_fixedFunction")->set(false);
     plain->getParameter("loa_photorealistic_ambient")->set(1.0f);
     Quad noColor;
     noColor.hasColor = false;

@@ -66,8 +66,9 @@ ImageCompositing::ImageCompositing()
     _range = new osg::Uniform("loa_depthRange", osg::Vec2f(1.0f, 1000.0f));
     _ortho = new osg::Uniform("loa_orthographic", false);
     _merge = new osg::Uniform("loa_mergeEpsilon", 2.0e-6f);
-    for (osg::Uniform* u :
-         {_usePingPong.get(), _useEdges.get(), _useUnsharp.get(), _range.get(), _ortho.get(), _merge.get()})
+    _origin = new osg::Uniform("loa_viewportOrigin", 0, 0);
+    for (osg::Uniform* u : {_usePingPong.get(), _useEdges.get(), _useUnsharp.get(), _range.get(),
+                            _ortho.get(), _merge.get(), _origin.get()})
     {
         u->setDataVariance(osg::Object::DYNAMIC);
         ss->addUniform(u);
@@ -114,6 +115,11 @@ void ImageCompositing::setDepthRange(float nearPlane, float farPlane, bool ortho
 void ImageCompositing::setMergeEpsilon(float epsilon)
 {
     _merge->set(epsilon);
+}
+
+void ImageCompositing::setViewportOrigin(int x, int y)
+{
+    _origin->set(x, y);
 }
 
 } // namespace osgLoA

@@ -242,6 +242,11 @@ struct StencilRoutedABuffer::Impl
     osg::ref_ptr<RoutingBin> prototype;
     osg::ref_ptr<osg::StateSet> routingFull, routingRaster, clearState, initState, countState;
     osg::ref_ptr<osg::Geometry> quad;
+    /** The viewport of the frame's passes, in every state set the passes apply. Without it,
+     *  osg::State falls back to the global default viewport (osg::Viewport's 800 x 600) once the
+     *  stage's viewport is popped: the clear, stencil initialisation and overflow count then
+     *  covered only x < 800, y < 600 of larger frames. */
+    osg::ref_ptr<osg::Viewport> passViewport = new osg::Viewport(0, 0, 1, 1);
 
     PerContext& context(unsigned ctx)
     {
@@ -405,10 +410,15 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
                               (owner->_coverage == AUTO_COVERAGE && !rasterCoverageByDefault(pc.caps));
     bin.setStateSet(fullCoverage ? routingFull.get() : routingRaster.get());
 
+    // The stage's viewport (the camera's, or the one it inherits), read before any pass state is
+    // applied; every pass below draws with it (passViewport), whatever its size and origin.
     const osg::Viewport* vp = state.getCurrentViewport();
     const int w = vp ? int(vp->x() + vp->width()) : 0;
     const int h = vp ? int(vp->y() + vp->height()) : 0;
-    if (w <= 0 || h <= 0) return;
+    if (w <= 0 || h <= 0 || vp->width() <= 0 || vp->height() <= 0) return;
+    passViewport->setViewport(vp->x(), vp->y(), vp->width(), vp->height());
+    // Same object, new values: make osg::State apply it again.
+    state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
 
     bool namesChanged = allocate(ctx, pc, w, h, n, std::max(1, pc.layers));
     ABufferFrameStatistics stats;
@@ -553,6 +563,7 @@ StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses) : _sample
         rs->setMode(GL_SAMPLE_MASK, forceOff);
         rs->setMode(GL_SAMPLE_ALPHA_TO_COVERAGE, forceOff);
         rs->setMode(GL_BLEND, forceOff);
+        rs->setAttribute(impl.passViewport.get());
         (full ? impl.routingFull : impl.routingRaster) = rs;
     }
     impl.clearState = new osg::StateSet;
@@ -562,6 +573,7 @@ StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses) : _sample
         impl.clearState->setAttribute(st.get());
         impl.clearState->setAttribute(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, true));
         impl.clearState->setAttribute(new osg::ColorMask(true, true, true, true));
+        impl.clearState->setAttribute(impl.passViewport.get());
     }
     osg::ref_ptr<osg::Program> quadProgram = ShaderLibrary::createProgram(
         "abuffer routing init", {"loa_abuffer_fullscreen.vert.glsl", "loa_abuffer_route_init.frag.glsl"});
@@ -582,6 +594,7 @@ StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses) : _sample
         ss->setMode(GL_SAMPLE_MASK, osg::StateAttribute::ON);
         ss->setMode(GL_BLEND, osg::StateAttribute::OFF);
         ss->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+        ss->setAttribute(impl.passViewport.get());
         return ss;
     };
     impl.initState = passState(osg::Stencil::ALWAYS);

@@ -41,8 +41,13 @@ void addFloat(GraphicStyle& s, const std::string& name, float value)
 
 osg::ref_ptr<GraphicStyle> photorealistic()
 {
-    osg::ref_ptr<GraphicStyle> s = makeStyle("photorealistic", "the model's own materials and textures, lit",
-                                             "loa_style_photorealistic.frag.glsl");
+    osg::ref_ptr<GraphicStyle> s =
+        makeStyle("photorealistic",
+                  "the model as OSG's fixed-function pipeline draws it: its materials, textures and light",
+                  "loa_style_photorealistic.frag.glsl");
+    // true: the fixed function's lighting, texture environment and texture matrix (the model as
+    // a plain render shows it); false: the project's simple lighting below.
+    s->getParameters()->addUniform(new osg::Uniform("loa_photorealistic_fixedFunction", true));
     addFloat(*s, "loa_photorealistic_ambient", 0.35f);
     s->getParameters()->addUniform(new osg::Uniform("loa_photorealistic_materialDiffuse", false));
     s->setOpaque(true);
@@ -52,9 +57,10 @@ osg::ref_ptr<GraphicStyle> photorealistic()
 
 osg::ref_ptr<GraphicStyle> abstractStyle()
 {
-    osg::ref_ptr<GraphicStyle> s =
-        makeStyle("abstract", "per-level filtered textures where FilterConfiguration provides them, else colour-quantized textures",
-                  "loa_style_abstract.frag.glsl");
+    osg::ref_ptr<GraphicStyle> s = makeStyle(
+        "abstract",
+        "per-level filtered textures where FilterConfiguration provides them, else colour-quantized textures",
+        "loa_style_abstract.frag.glsl");
     s->getParameters()->addUniform(new osg::Uniform("loa_abstract_levels", 5));
     addFloat(*s, "loa_abstract_chromaStep", 0.05f);
     addFloat(*s, "loa_abstract_ambient", 0.6f);

@@ -3,6 +3,7 @@
 #include <osgLoA/transitions/TransitionRenderer>
 
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LandmarkDeformation>
@@ -107,26 +108,12 @@ private:
     mutable bool _inside = false;
 };
 
-/** One walk over a feature's StateSets: whether its material is opaque (no blending, no
- *  transparent bin, no translucent base texture), and, on each StateSet with a texture on unit 0,
- *  the uniform loa_hasTexture = true. The feature's own state sets it false, so the styles sample
- *  the base texture exactly for the drawables that have one (a forest's textured floor and its
- *  untextured crowns are one feature; an unbound sampler reads black). */
+/** Whether a feature's material is opaque: none of its StateSets blends, uses the transparent
+ *  bin or maps a translucent image without an alpha test (FixedFunctionUniforms::isOpaque). */
 bool inspectMaterial(osg::Node& node)
 {
     bool opaque = true;
-    StateSetVisitor v(
-        [&](osg::StateSet& ss)
-        {
-            if (ss.getRenderingHint() == osg::StateSet::TRANSPARENT_BIN ||
-                (ss.getMode(GL_BLEND) & osg::StateAttribute::ON))
-                opaque = false;
-            const osg::Texture* t =
-                dynamic_cast<const osg::Texture*>(ss.getTextureAttribute(0, osg::StateAttribute::TEXTURE));
-            if (!t) return;
-            if (t->getImage(0) && t->getImage(0)->isImageTranslucent()) opaque = false;
-            if (!ss.getUniform("loa_hasTexture")) ss.addUniform(new osg::Uniform("loa_hasTexture", true));
-        });
+    StateSetVisitor v([&](osg::StateSet& ss) { opaque = opaque && FixedFunctionUniforms::isOpaque(ss); });
     node.accept(v);
     return opaque;
 }
@@ -228,6 +215,12 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
     _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
     uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
+    // The fixed-function state the styles reproduce starts from OSG's defaults; the model's
+    // StateSets carry their own (bind()). The alpha test is the shaders' (loa_alphaFunc): GL's
+    // would test the blend-weighted alpha of the A-buffer pass.
+    FixedFunctionUniforms::setDefaults(*_common);
+    _common->setMode(GL_ALPHA_TEST, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE |
+                                        osg::StateAttribute::PROTECTED);
     uniform(*_common, "loa_frontDepth", osg::Uniform::SAMPLER_2D)->set(int(kFrontDepthUnit));
 }
 
@@ -310,6 +303,10 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
     if (!scenario) return;
     const auto& configs = scenario->getConfigurations();
     const unsigned n = unsigned(std::min<std::size_t>(configs.size(), kN));
+    // Textures, lighting, materials, texture environments and alpha tests wherever they sit in
+    // the model (a feature's own node, a Geode, a drawable): uniforms the styles read.
+    for (unsigned c = 0; c < _node.getNumChildren(); ++c)
+        FixedFunctionUniforms::annotate(*_node.getChild(c));
     _styles.assign(n, StyleState());
     int visibleMask = 0;
     osg::Uniform* edge = uniform(*_common, "loa_styleEdge", osg::Uniform::FLOAT_VEC4, kN);
@@ -401,11 +398,7 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         uniform(*ss, "loa_featureType", osg::Uniform::INT)->set(int(e.feature->getType()));
         uniform(*ss, "loa_featureId", osg::Uniform::UNSIGNED_INT)->set(e.feature->getId());
         _featureState[i] = ss;
-        if (osg::Node* node = e.node.get())
-        {
-            _opaqueMaterial[i] = inspectMaterial(*node) ? 1 : 0;
-            uniform(*ss, "loa_hasTexture", osg::Uniform::BOOL)->set(false);
-        }
+        if (osg::Node* node = e.node.get()) _opaqueMaterial[i] = inspectMaterial(*node) ? 1 : 0;
         const auto& subs = _settings.pingPongSubTypes;
         _routedToPingPong[i] = _settings.pingPong && e.feature->getType() == FeatureType::Green &&
                                std::find(subs.begin(), subs.end(), e.feature->getSubType()) != subs.end();
@@ -738,6 +731,7 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     }
     _compositing->setInputs(_stats.aBuffer, _stats.pingPongBuffer, _settings.edges, _stats.unsharp);
     _compositing->setDepthRange(float(zNear), float(zFar), ortho);
+    _compositing->setViewportOrigin(vp ? int(vp->x()) : 0, vp ? int(vp->y()) : 0);
     _compositing->getNode()->accept(cv);
 }
 
