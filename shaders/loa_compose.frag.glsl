@@ -193,11 +193,13 @@ void main()
 #else
     vec4 result = loa_composeWithoutABuffer(p);
 #endif
-    if (loa_drawn(p) && result.a > 0.0 && result.a < 0.999)
+    if (loa_mergeEpsilon >= 0.0 && loa_drawn(p) && result.a > 0.0 && result.a < 0.999)
     {
         // The front surface is opaque here (the G-buffer's coverage: its visible styles' weights
         // sum to 1), so the fragments must sum to full opacity; where routing lost some of them
-        // (edge pixels under raster coverage) the ones that arrived stand for the surface.
+        // (edge pixels under raster coverage) the ones that arrived stand for the surface. The
+        // paper's literal Algorithm 2 (loa_mergeEpsilon < 0) is left as it is: it lets the
+        // background through at surfaces of several styles (docs/rendering.md).
         result /= result.a;
     }
     if (loa_useEdges && loa_drawn(p))

@@ -15,7 +15,15 @@ struct Row
     std::string parameters;
     osgLoA::FrameTimes times;
     std::string errorMean, errorMax;
+    /** The check of the row's last frame failed (its reason is in the parameters): loa-bench
+     *  writes the row, then exits 1 naming it. A row whose frame is wrong is a bug, not a number. */
+    bool frameFailed = false;
 };
+
+/** Checks a benchmark's last frame against a reference frame of the same view (plain rendering):
+ *  the covered area (pixels not of the clear colour) and the black pixels may differ by at most
+ *  0.2 % of the frame. Returns "" when the frame passes, else what is wrong. */
+std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clearColor);
 
 /** The demo city (default CityParameters), generated once per process. */
 osg::ref_ptr<osg::Node> demoCity();

@@ -435,6 +435,7 @@ int main(int argc, char** argv)
                     throw loa::UsageError("unknown argument '" + a + "' (see --help)");
             }
             const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
+            std::vector<std::string> failedFrames;
             for (const auto& c : cases)
             {
                 if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), c.first) == chosen.end())
@@ -453,6 +454,14 @@ int main(int argc, char** argv)
                 const std::string path = outDir + "/" + c.first + ".csv";
                 osgLoA::AtomicFile::writeText(path, csv.str());
                 std::cout << "wrote " << path << " (" << rows.size() << " rows; " << line << ")\n";
+                for (const Row& r : rows)
+                    if (r.frameFailed) failedFrames.push_back(c.first + ": " + r.parameters);
+            }
+            if (!failedFrames.empty())
+            {
+                for (const std::string& f : failedFrames)
+                    std::cerr << "loa-bench: error: wrong frame in " << f << "\n";
+                return 1;
             }
             return loa::kOk;
         });

@@ -15,6 +15,7 @@
 #include <osg/Stencil>
 #include <osg/Viewport>
 #include <osgUtil/RenderBin>
+#include <osgUtil/RenderStage>
 #include <osgUtil/StateGraph>
 
 #include <algorithm>
@@ -410,9 +411,13 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
                               (owner->_coverage == AUTO_COVERAGE && !rasterCoverageByDefault(pc.caps));
     bin.setStateSet(fullCoverage ? routingFull.get() : routingRaster.get());
 
-    // The stage's viewport (the camera's, or the one it inherits), read before any pass state is
-    // applied; every pass below draws with it (passViewport), whatever its size and origin.
-    const osg::Viewport* vp = state.getCurrentViewport();
+    // The stage's viewport: the camera's, or the one it inherits from the camera above it (set
+    // by the cull traversal on the render stage). osg::State's current viewport is not used: a
+    // state set applied earlier in the frame may have reset it to osg::Viewport's default
+    // 800 x 600. Every pass below draws with this one (passViewport), whatever its size and origin.
+    const osgUtil::RenderStage* stage = bin.getStage();
+    const osg::Viewport* vp =
+        stage && stage->getViewport() ? stage->getViewport() : state.getCurrentViewport();
     const int w = vp ? int(vp->x() + vp->width()) : 0;
     const int h = vp ? int(vp->y() + vp->height()) : 0;
     if (w <= 0 || h <= 0 || vp->width() <= 0 || vp->height() <= 0) return;
