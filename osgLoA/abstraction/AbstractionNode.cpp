@@ -13,7 +13,7 @@
 
 #include "../compositing/RenderTarget.h"
 #include <osgLoA/render/ShaderLibrary>
-#include <osgLoA/util/StateSetVisitor>
+#include <osgLoA/styles/FixedFunctionUniforms>
 
 #include <osg/BlendFunc>
 #include <osg/ComputeBoundsVisitor>
@@ -657,15 +657,10 @@ void AbstractionNode::collectObjects()
     _objectOfId.clear();
     for (osg::StateSet* ss : {_idState.get(), _shadingState.get()})
         ss->getOrCreateUniform("loa_abstraction_slot", osg::Uniform::INT)->set(_slot);
-    // Which StateSets carry a base texture (the unshaded pass samples exactly those).
-    StateSetVisitor textures(
-        [](osg::StateSet& ss)
-        {
-            if (dynamic_cast<const osg::Texture*>(ss.getTextureAttribute(0, osg::StateAttribute::TEXTURE)) &&
-                !ss.getUniform("loa_hasTexture"))
-                ss.addUniform(new osg::Uniform("loa_hasTexture", true));
-        });
-    osg::Group::traverse(textures);
+    // Which StateSets carry a base texture (the unshaded pass samples exactly those): the same
+    // mirror of the fixed-function state the LoA node's styles read.
+    for (unsigned c = 0; c < getNumChildren(); ++c)
+        FixedFunctionUniforms::annotate(*getChild(c));
 
     auto add =
         [&](unsigned id, const osg::Vec3d& centre, osg::StateSet* ss, osg::Node* node, osg::Drawable* d)

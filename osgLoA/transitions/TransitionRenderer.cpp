@@ -108,8 +108,8 @@ private:
     mutable bool _inside = false;
 };
 
-/** Whether a feature's material is opaque: none of its StateSets blends, uses the transparent
- *  bin or maps a translucent image without an alpha test (FixedFunctionUniforms::isOpaque). */
+/** Whether a feature's material is opaque: none of its StateSets blends or uses the transparent
+ *  bin (FixedFunctionUniforms::isOpaque; without blending, alpha is ignored, as by OSG). */
 bool inspectMaterial(osg::Node& node)
 {
     bool opaque = true;
