@@ -37,6 +37,7 @@ uniform sampler2D loa_abstraction_ids;
 uniform sampler2D loa_abstraction_objectData;
 uniform sampler2D loa_abstraction_shading;
 uniform sampler2D loa_abstraction_base;
+uniform sampler2D loa_abstraction_surface; // view normal, view depth (0: no surface)
 uniform float loa_abstraction_edgeOpacity = 1.0;
 uniform float loa_abstraction_edgeOpacityFar = 0.2;
 uniform float loa_abstraction_bleaching = 0.0;
@@ -54,6 +55,22 @@ vec3 loa_id(ivec2 p)
 {
     ivec2 size = textureSize(loa_abstraction_ids, 0);
     return texelFetch(loa_abstraction_ids, clamp(p, ivec2(0), size - 1), 0).rgb;
+}
+
+// An object silhouette between p and q: another object id (or the background) where the
+// surface is not continuous: normals more than ~18 degrees apart or depths more than 2 % apart.
+// Objects that tile one surface (a game level's terrain pieces, a facade split into drawables)
+// meet without a line.
+bool loa_silhouette(ivec2 p, vec3 id, ivec2 q)
+{
+    if (all(equal(id, loa_id(q))))
+        return false;
+    ivec2 size = textureSize(loa_abstraction_surface, 0);
+    vec4 a = texelFetch(loa_abstraction_surface, clamp(p, ivec2(0), size - 1), 0);
+    vec4 b = texelFetch(loa_abstraction_surface, clamp(q, ivec2(0), size - 1), 0);
+    if (a.w <= 0.0 || b.w <= 0.0) // the background on one side
+        return true;
+    return 1.0 - dot(a.xyz, b.xyz) > 0.05 || abs(a.w - b.w) > 0.02 * max(a.w, b.w);
 }
 
 void main()
@@ -92,7 +109,7 @@ void main()
 #endif
 #if defined(LOA_SILHOUETTES)
     vec3 c0 = loa_id(p);
-    if (any(notEqual(c0, loa_id(p - ivec2(1, 0)))) || any(notEqual(c0, loa_id(p - ivec2(0, 1)))))
+    if (loa_silhouette(p, c0, p - ivec2(1, 0)) || loa_silhouette(p, c0, p - ivec2(0, 1)))
         E = 0.0;
 #endif
 #if LOA_SHADING != 0
@@ -107,7 +124,10 @@ void main()
     c = mix(mix(P, vec3(1.0), bleach), vec3(0.0), lines);
 #elif LOA_COMBINATION == 1
 #if LOA_SHADING == 2
-    c = vec3(shade);
+    // Pencil tones on white paper: where no surface was shaded (alpha 0, the background) the
+    // normal frame shows through (the sky), so that lit faces, drawn white, stay visible
+    // against it instead of vanishing into white paper.
+    c = texelFetch(loa_abstraction_shading, p, 0).a > 0.5 ? vec3(shade) : n.rgb;
 #else
     c = n.rgb * shade;
 #endif

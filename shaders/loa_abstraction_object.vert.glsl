@@ -14,6 +14,7 @@ out vec4 loa_color;
 out float loa_gouraud;
 out vec3 loa_objectPosition; // model coordinates: the pencil texture's frame, fixed to the polygon
 out vec3 loa_objectNormal;
+out vec4 loa_viewSurface; // view-space normal (turned towards the eye) and view distance along -z
 
 void main()
 {
@@ -29,5 +30,6 @@ void main()
     loa_color = gl_Color;
     loa_objectPosition = gl_Vertex.xyz / (gl_Vertex.w != 0.0 ? gl_Vertex.w : 1.0);
     loa_objectNormal = gl_Normal;
+    loa_viewSurface = vec4(n, -viewPosition.z);
     gl_Position = osg_ModelViewProjectionMatrix * gl_Vertex;
 }

@@ -30,8 +30,12 @@ in vec3 loa_objectNormal;
 
 layout(location = 0) out vec4 loa_fragColor;
 
+bool loa_materialCovers(vec2 texCoord, vec4 color); // loa_material_alpha.frag.glsl
+
 void main()
 {
+    if (!loa_materialCovers(loa_texCoord, loa_color))
+        discard;
     float s = clamp(loa_gouraud, 0.0, 1.0);
 #if defined(LOA_ADAPTIVE)
     float n = floor(mix(float(loa_abstraction_levelsFar), float(loa_abstraction_levels),

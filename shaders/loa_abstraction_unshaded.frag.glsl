@@ -12,8 +12,12 @@ in vec3 loa_objectNormal;
 
 layout(location = 0) out vec4 loa_fragColor;
 
+bool loa_materialCovers(vec2 texCoord, vec4 color); // loa_material_alpha.frag.glsl
+
 void main()
 {
+    if (!loa_materialCovers(loa_texCoord, loa_color))
+        discard;
     vec4 base = loa_color;
     if (loa_hasTexture)
         base *= texture(loa_baseTexture, loa_texCoord);

@@ -1,21 +1,34 @@
 #version 450 compatibility
-// Graphic style "abstract" (paper 004 §3.1 stylized textures; osgLoA::GraphicStyle,
-// docs/styles.md): the surface colour (texture x vertex colour) colour-quantized per fragment
-// in Oklab (lightness to loa_abstract_levels levels, chroma down to a multiple of
-// loa_abstract_chromaStep, inside the sRGB gamut), lit softly. The CPU twin is
-// osgLoA::ColorQuantization; the two must compute the same function.
-// Where the drawable's texture has per-level filtered mipmaps (paper 000 Eq. 2; bound on unit 3
-// by osgLoA::FilterConfiguration::apply, which sets loa_hasFilteredTexture), the style shows the
-// filtered texture instead, unquantized: the filter is the abstraction. The quantization remains
-// the fallback for textures without a filter.
+// Graphic style "abstract" (paper 004 §3.1, Figures 3D and 4; osgLoA::GraphicStyle,
+// docs/styles.md). Textured surfaces show the texture abstraction of
+// osgLoA::TextureAbstraction: per mip level (paper 000 Eq. 2) a bilateral + quantized colour
+// texture (unit 3, loa_filteredTexture) and a DoG outline texture (unit 4, loa_abstractOutline),
+// prepared once per model by osgLoA::StylePreparation. As the paper has it, colour and outline
+// are blended here, at rendering time, each with its own weight: loa_abstract_colorBlend (0 the
+// texture as it is, 1 the abstracted colour) and loa_abstract_outlineBlend (0 no outlines, 1 the
+// DoG lines at full strength). Lighting and texture environment are the model's, as the
+// photorealistic style has them (loa_fixed_function.frag.glsl), so an abstract feature keeps its
+// brightness and a blend with photorealistic changes the texture, not the light; with
+// loa_abstract_modelLighting false, soft lighting (ambient loa_abstract_ambient) instead.
+// Untextured surfaces (their lit colour) are colour-quantized per fragment in Oklab
+// (lightness to loa_abstract_levels levels, chroma to a multiple of loa_abstract_chromaStep,
+// inside the sRGB gamut; CPU twin osgLoA::ColorQuantization): a flat colour has no texels to
+// speckle. A texture the preparation could not filter (reported by name when it skipped it)
+// falls back to the texture sampled 2 mip levels coarser (blurred), not quantized: per-texel
+// quantization of a raw texture makes speckle, not abstraction.
 uniform sampler2D loa_baseTexture;
 uniform bool loa_hasTexture; // the drawable has a texture on unit 0 (TransitionRenderer::bind)
 layout(binding = 3) uniform sampler2D loa_filteredTexture; // FilterConfiguration's diffuse channel
 uniform bool loa_hasFilteredTexture = false; // a filtered texture is bound (FilterConfiguration)
+layout(binding = 4) uniform sampler2D loa_abstractOutline; // TextureAbstraction's outline channel
+uniform bool loa_hasAbstractOutline = false;
+uniform float loa_abstract_colorBlend = 1.0;
+uniform float loa_abstract_outlineBlend = 1.0;
 uniform vec3 loa_lightDirection = vec3(0.3, 0.5, 0.8); // towards the light, view space
 uniform int loa_abstract_levels = 5;
 uniform float loa_abstract_chromaStep = 0.05;
 uniform float loa_abstract_ambient = 0.6;
+uniform bool loa_abstract_modelLighting = true; // the model's fixed-function lighting; false: soft
 
 vec3 loa_abstract_toLinear(vec3 c)
 {
@@ -86,17 +99,30 @@ vec3 loa_abstract_quantize(vec3 srgb)
     return loa_abstract_toSrgb(linear);
 }
 
+vec4 loa_fixedFunctionLighting(vec3 viewPosition, vec3 normal, vec4 color); // loa_fixed_function.frag.glsl
+vec4 loa_fixedFunctionTexEnv(vec4 fragment, vec4 texel);
+
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
-    vec4 base = color;
-    float ambient = loa_abstract_ambient;
-    float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);
+    // The surface as the model lights it (as the photorealistic style does), or soft lighting.
+    vec4 lit;
+    if (loa_abstract_modelLighting)
+        lit = loa_fixedFunctionLighting(viewPosition, gl_FrontFacing ? viewNormal : -viewNormal, color);
+    else
+    {
+        float ambient = loa_abstract_ambient;
+        float diffuse = max(dot(viewNormal, normalize(loa_lightDirection)), 0.0);
+        lit = vec4(color.rgb * (ambient + (1.0 - ambient) * diffuse), color.a);
+    }
     if (loa_hasTexture && loa_hasFilteredTexture)
     {
-        base *= texture(loa_filteredTexture, texCoord);
-        return vec4(base.rgb * (ambient + (1.0 - ambient) * diffuse), base.a);
+        vec4 texel = mix(texture(loa_baseTexture, texCoord), texture(loa_filteredTexture, texCoord),
+                         clamp(loa_abstract_colorBlend, 0.0, 1.0));
+        if (loa_hasAbstractOutline)
+            texel.rgb *= mix(1.0, texture(loa_abstractOutline, texCoord).r, clamp(loa_abstract_outlineBlend, 0.0, 1.0));
+        return loa_fixedFunctionTexEnv(lit, texel);
     }
     if (loa_hasTexture)
-        base *= texture(loa_baseTexture, texCoord);
-    return vec4(loa_abstract_quantize(base.rgb) * (ambient + (1.0 - ambient) * diffuse), base.a);
+        return loa_fixedFunctionTexEnv(lit, texture(loa_baseTexture, texCoord, 2.0));
+    return vec4(loa_abstract_quantize(lit.rgb), lit.a);
 }

@@ -106,7 +106,8 @@ osg::ref_ptr<osg::Node> quadsScene()
 {
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(quad(4, 8, 24, 40, -1, osg::Vec4(0.8f, 0.6f, 0.4f, 1)).get());
-    geode->addDrawable(quad(24, 8, 40, 40, -1, osg::Vec4(0.8f, 0.6f, 0.4f, 1)).get());
+    // Behind the first (a silhouette separates objects where the surface is discontinuous).
+    geode->addDrawable(quad(24, 8, 40, 40, -2, osg::Vec4(0.8f, 0.6f, 0.4f, 1)).get());
     osg::Vec3 tilted(0, -1, 1);
     tilted.normalize();
     geode->addDrawable(quad(44, 8, 60, 40, -1, osg::Vec4(0.8f, 0.6f, 0.4f, 1), tilted).get());
@@ -293,6 +294,26 @@ TEST(AbstractionNodeGLTest, SilhouettesSeparateObjectsOfOneColour)
         EXPECT_GT(pixel(*sil, 23, y).x(), 0.5f) << y;
         EXPECT_EQ(pixel(*sil, 24, y), osg::Vec3f(0, 0, 0)) << y;
         EXPECT_GT(pixel(*sil, 14, y).x(), 0.5f) << y; // inside drawable 1: no line
+    }
+}
+
+// Objects that tile one surface (a game level's terrain pieces: coplanar, touching) meet without
+// a silhouette; the same two objects one behind the other get one.
+TEST(AbstractionNodeGLTest, SilhouettesSkipObjectsTilingOneSurface)
+{
+    osg::ref_ptr<osg::Geode> tiles = new osg::Geode;
+    tiles->addDrawable(quad(4, 8, 24, 40, -1, osg::Vec4(0.8f, 0.6f, 0.4f, 1)).get());
+    tiles->addDrawable(quad(24, 8, 40, 40, -1, osg::Vec4(0.8f, 0.6f, 0.4f, 1)).get());
+    tiles->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    osg::ref_ptr<AbstractionStyle> style = AbstractionStyle::createBuiltin("sobel");
+    style->setSilhouettes(true);
+    osg::ref_ptr<osg::Image> out = renderStyled(tiles.get(), style.get());
+    for (int y = 10; y < 38; ++y)
+    {
+        EXPECT_GT(pixel(*out, 23, y).x(), 0.5f) << y;
+        EXPECT_GT(pixel(*out, 24, y).x(), 0.5f) << y;
+        EXPECT_EQ(pixel(*out, 4, y), osg::Vec3f(0, 0, 0)) << y; // against the background: a line
+        EXPECT_GT(pixel(*out, 14, y).x(), 0.5f) << y;
     }
 }
 
@@ -564,6 +585,7 @@ TEST(AbstractionNodeGLTest, DoGEdgesOfTheFrameMatchTheCpuFilter)
     dog->setSigmaE(style->getDogSigma());
     dog->setK(style->getDogRatio());
     dog->setTau(style->getDogTau());
+    dog->setEpsilon(style->getDogEpsilon());
     dog->setMode(DoGFilter::EDGES);
     EXPECT_FLOAT_EQ(style->getDogRatio(), 1.6f); // the Marr-Hildreth ratio of paper 001
     const FilterImage edges = dog->apply(frame, ImageBorder(WrapMode::Clamp, WrapMode::Clamp));

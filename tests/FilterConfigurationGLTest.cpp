@@ -15,6 +15,7 @@
 #include <osgLoA/styles/ColorQuantization>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/transitions/BlendFunction>
+#include <osgLoA/styles/StylePreparation>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/TransitionConfiguration>
 #include <osgLoA/transitions/UsageScenario>
@@ -117,7 +118,7 @@ float maxDiff(const osg::Vec3f& a, const osg::Vec3f& b)
 }
 } // namespace
 
-TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndQuantizesTheRest)
+TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndTheRestAsItIs)
 {
     // Left: a building whose diffuse filter (a Gaussian of sigma 8, repeat-wrapped, on a 4x4
     // texture) makes every texel the texture's mean; right: water, whose filter is none.
@@ -135,6 +136,7 @@ TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndQuanti
     ASSERT_EQ(report.unfiltered, 1u);
 
     osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("abstract");
+    style->getParameter("loa_abstract_modelLighting")->set(false);
     style->getParameter("loa_abstract_ambient")->set(1.0f); // unlit: the colour itself
     int levels = 0;
     style->getParameter("loa_abstract_levels")->get(levels);
@@ -143,6 +145,7 @@ TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndQuanti
     osg::ref_ptr<osg::Program> program = new osg::Program;
     program->addShader(new osg::Shader(osg::Shader::VERTEX, kHarnessVertex));
     program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kHarnessFragment));
+    program->addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
     program->addShader(ShaderLibrary::createShader(style->getFragmentShader()).get());
     osg::StateSet* ss = root->getOrCreateStateSet();
     ss->setAttributeAndModes(program.get());
@@ -186,10 +189,10 @@ TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndQuanti
         const osg::Vec3f left = pixel(*img, px, py);
         EXPECT_LT(maxDiff(left, mean), 2.5f / 255.0f) << "building, texel " << i;
         if (maxDiff(left, quantized) > 10.0f / 255.0f) ++differFromQuantized;
-        // Right (water, no filter): the quantization of the original texel, as before (the
-        // bar of GraphicStyleGLTest; texels on a quantization boundary may round either way).
+        // Right (water, no filter): the texture as it is, not quantized per texel (the fallback
+        // samples 2 mip levels coarser, which under this magnification is level 0).
         const osg::Vec3f right = pixel(*img, 32 + px, py);
-        EXPECT_LT(maxDiff(right, quantized), 2.5f / 255.0f) << "water, texel " << i;
+        EXPECT_LT(maxDiff(right, texel), 2.5f / 255.0f) << "water, texel " << i;
     }
     // The output follows the filtered texture, not the quantized original.
     EXPECT_GE(differFromQuantized, 14);
@@ -197,8 +200,15 @@ TEST(FilterConfigurationGLTest, TheAbstractStyleShowsTheFilteredTextureAndQuanti
 
 TEST(FilterConfigurationGLTest, TheLoANodeDrawsFilteredTexturesInTheAbstractStyle)
 {
-    // A textured ground feature drawn in the abstract style by the LoA node: with a filter that
-    // flattens the texture the ground is one colour; without, it shows the quantized texels.
+    // A textured ground feature drawn in the abstract style by the LoA node: with the user's own
+    // filter configuration (a Gaussian that flattens the texture) the ground is one colour and
+    // the node keeps that configuration; without one, the node prepares the style itself
+    // (StylePreparation: TextureAbstraction's colour and outline pyramids, 2 textures).
+    struct Frame
+    {
+        osg::ref_ptr<osg::Image> image;
+        StylePreparation::Report report;
+    };
     auto render = [](bool filter)
     {
         osg::ref_ptr<osg::Texture2D> t = texture();
@@ -222,6 +232,10 @@ TEST(FilterConfigurationGLTest, TheLoANodeDrawsFilteredTexturesInTheAbstractStyl
         c->addMetric(new SaliencyMetric(SaliencyMetric::FEATURE_INTEREST, 0, 0));
         s->addConfiguration(c.get());
         osg::ref_ptr<LoANode> loa = new LoANode;
+        StylePreparation::Options o;
+        o.cacheDir = "-";
+        o.progress = [](const std::string&) {};
+        loa->setStylePreparationOptions(o);
         loa->setScenario(s.get());
         loa->addChild(ground.get());
         OffscreenRenderer::Settings rs;
@@ -231,7 +245,10 @@ TEST(FilterConfigurationGLTest, TheLoANodeDrawsFilteredTexturesInTheAbstractStyl
         r->setSceneData(loa.get());
         r->setViewMatrixAsLookAt(osg::Vec3d(-0.5, 0, 3), osg::Vec3d(-0.5, 0, 0), osg::Vec3d(0, 1, 0));
         r->setPerspective(30.0);
-        return r->renderImage();
+        Frame f;
+        f.image = r->renderImage();
+        f.report = loa->getStylePreparationReport();
+        return f;
     };
     // The spread of the colours over the centre of the quad (away from its edges).
     auto spread = [](const osg::Image& img)
@@ -246,7 +263,10 @@ TEST(FilterConfigurationGLTest, TheLoANodeDrawsFilteredTexturesInTheAbstractStyl
             }
         return hi - lo;
     };
-    osg::ref_ptr<osg::Image> filtered = render(true), plain = render(false);
-    EXPECT_LT(spread(*filtered), 6.0f / 255.0f);
-    EXPECT_GT(spread(*plain), 0.3f);
+    const Frame filtered = render(true), automatic = render(false);
+    EXPECT_LT(spread(*filtered.image), 6.0f / 255.0f);
+    EXPECT_TRUE(filtered.report.styles.empty()); // the user's configuration is kept
+    ASSERT_EQ(automatic.report.styles, std::vector<std::string>{"abstract"});
+    EXPECT_EQ(automatic.report.abstractTextures, 2u);
+    EXPECT_EQ(automatic.report.skipped, 0u);
 }

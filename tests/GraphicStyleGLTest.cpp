@@ -74,6 +74,7 @@ osg::ref_ptr<osg::Program> harnessProgram(const GraphicStyle& style)
     f->setName("test_harness.frag");
     p->addShader(v.get());
     p->addShader(f.get());
+    p->addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
     p->addShader(ShaderLibrary::createShader(style.getFragmentShader()).get());
     return p;
 }
@@ -234,64 +235,61 @@ TEST(GraphicStyleGLTest, CartographicColoursAreEditableParameters)
                      "type 42");
 }
 
-TEST(GraphicStyleGLTest, AbstractIsTheCpuQuantizationOfTheTexel)
+// Untextured surfaces: the abstract style quantizes their (lit) colour as ColorQuantization does.
+// (Textured ones show TextureAbstraction's filtered textures: FilterConfigurationGLTest,
+// LoARenderFullFrameGLTest.)
+TEST(GraphicStyleGLTest, AbstractIsTheCpuQuantizationOfTheColour)
 {
     loatest::setFilePath("");
-    // Texels spread over hues, lightness and saturation (none on a quantization boundary:
+    // Colours spread over hues, lightness and saturation (none on a quantization boundary:
     // checked below on the CPU).
-    const std::vector<osg::Vec4ub> texels = {
+    const std::vector<osg::Vec4ub> colours = {
         {200, 40, 30, 255},   {30, 160, 60, 255},  {40, 70, 210, 255},   {230, 220, 80, 255},
         {128, 128, 128, 255}, {20, 20, 24, 255},   {250, 250, 245, 255}, {150, 90, 60, 255},
         {90, 150, 170, 255},  {170, 60, 140, 255}, {60, 40, 90, 255},    {210, 150, 120, 255},
         {100, 120, 40, 255},  {240, 120, 20, 255}, {70, 90, 110, 255},   {180, 200, 230, 128}};
     for (const int levels : {5, 3})
-    {
-        osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("abstract");
-        style->getParameter("loa_abstract_levels")->set(levels);
-        style->getParameter("loa_abstract_ambient")->set(1.0f); // unlit: the quantized colour itself
-        const float step = parameterFloat(*style, "loa_abstract_chromaStep");
-        Quad q;
-        osg::ref_ptr<osg::Geometry> g = quad(*style, q);
-        g->getOrCreateStateSet()->setTextureAttributeAndModes(0, texture(texels).get());
-        g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_hasTexture", true));
-        osg::ref_ptr<osg::Image> img = render(g.get());
-        for (int i = 0; i < 16; ++i)
+        for (std::size_t i = 0; i < colours.size(); ++i)
         {
-            const osg::Vec3f c = texelColor(texels[i]);
+            osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("abstract");
+            style->getParameter("loa_abstract_levels")->set(levels);
+            style->getParameter("loa_abstract_modelLighting")->set(false);
+            style->getParameter("loa_abstract_ambient")->set(1.0f); // unlit: the quantized colour itself
+            const float step = parameterFloat(*style, "loa_abstract_chromaStep");
+            Quad q;
+            const osg::Vec3f c = texelColor(colours[i]);
+            q.color = osg::Vec4f(c, colours[i][3] / 255.0f);
+            osg::ref_ptr<osg::Geometry> g = quad(*style, q);
+            g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_hasTexture", false));
+            osg::ref_ptr<osg::Image> img = render(g.get());
             const osg::Vec3f expected = ColorQuantization::quantize(c, levels, step);
-            // The texel must not sit on a boundary, where GPU and CPU rounding may differ.
+            // The colour must not sit on a boundary, where GPU and CPU rounding may differ.
             for (const osg::Vec3f& d : {osg::Vec3f(0.4f, 0.4f, 0.4f), osg::Vec3f(-0.4f, -0.4f, -0.4f),
                                         osg::Vec3f(0.4f, -0.4f, 0.0f), osg::Vec3f(0.0f, 0.4f, -0.4f)})
                 ASSERT_LT((ColorQuantization::quantize(c + d / 255.0f, levels, step) - expected).length(),
                           1.5f / 255.0f)
-                    << "texel " << i << " is near a quantization boundary; pick another";
-            const int x = (i % 4) * 8 + 4, y = (i / 4) * 8 + 4;
-            expectPixel(*img, x, y, rgba(expected, texels[i][3] / 255.0f),
-                        "abstract, " + std::to_string(levels) + " levels, texel " + std::to_string(i));
+                    << "colour " << i << " is near a quantization boundary; pick another";
+            expectPixel(*img, 16, 16, rgba(expected, colours[i][3] / 255.0f),
+                        "abstract, " + std::to_string(levels) + " levels, colour " + std::to_string(i));
         }
-    }
 }
 
-TEST(GraphicStyleGLTest, AbstractIsLitSoftlyAndTintedByTheVertexColour)
+TEST(GraphicStyleGLTest, AbstractIsLitSoftlyAndQuantized)
 {
     loatest::setFilePath("");
     osg::ref_ptr<GraphicStyle> style = GraphicStyle::createBuiltin("abstract");
+    style->getParameter("loa_abstract_modelLighting")->set(false);
     const float ambient = parameterFloat(*style, "loa_abstract_ambient");
     const float step = parameterFloat(*style, "loa_abstract_chromaStep");
     int levels = 0;
     style->getParameter("loa_abstract_levels")->get(levels);
     Quad q;
     q.normal = kTilted;
-    q.color = osg::Vec4f(1.0f, 0.8f, 0.6f, 1.0f);
-    const osg::Vec4ub texel(200, 180, 90, 255);
+    q.color = osg::Vec4f(0.8f, 0.6f, 0.3f, 1.0f);
     osg::ref_ptr<osg::Geometry> g = quad(*style, q);
-    g->getOrCreateStateSet()->setTextureAttributeAndModes(0,
-                                                          texture(std::vector<osg::Vec4ub>(16, texel)).get());
-    g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_hasTexture", true));
-    const osg::Vec3f base = times(texelColor(texel), osg::Vec3f(1.0f, 0.8f, 0.6f));
-    const osg::Vec3f expected =
-        ColorQuantization::quantize(base, levels, step) * GraphicStyle::lightFactor(kTilted, ambient);
-    expectEverywhere(*render(g.get()), rgba(expected), "abstract, lit");
+    g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_hasTexture", false));
+    const osg::Vec3f lit = osg::Vec3f(0.8f, 0.6f, 0.3f) * GraphicStyle::lightFactor(kTilted, ambient);
+    expectEverywhere(*render(g.get()), rgba(ColorQuantization::quantize(lit, levels, step)), "abstract, lit");
 }
 
 TEST(GraphicStyleGLTest, PhotorealisticIsTextureTimesColourTimesLight)

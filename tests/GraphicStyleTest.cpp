@@ -307,17 +307,20 @@ TEST(GraphicStyleTest, CreateProgramLinksTheCommonShadersAndTheStyleFragment)
             continue;
         }
         const std::vector<std::string> names = s->shaderNames(common);
-        ASSERT_EQ(names.size(), 3u);
+        // The common shaders, the fixed-function library the built-in styles call, the style's.
+        ASSERT_EQ(names.size(), 4u);
+        EXPECT_EQ(names[2], "loa_fixed_function.frag.glsl");
         EXPECT_EQ(names.back(), s->getFragmentShader());
         osg::ref_ptr<osg::Program> p = s->createProgram(common);
         ASSERT_TRUE(p.valid()) << name;
         EXPECT_EQ(p->getName(), "loa_style_" + name);
-        ASSERT_EQ(p->getNumShaders(), 3u);
+        ASSERT_EQ(p->getNumShaders(), 4u);
         EXPECT_EQ(p->getShader(0)->getName(), "loa_plain.vert.glsl");
         EXPECT_EQ(p->getShader(1)->getName(), "loa_transition.frag.glsl");
-        EXPECT_EQ(p->getShader(2)->getName(), s->getFragmentShader());
-        EXPECT_EQ(p->getShader(2)->getType(), osg::Shader::FRAGMENT);
-        EXPECT_NE(p->getShader(2)->getShaderSource().find("loa_styleColor"), std::string::npos) << name;
+        EXPECT_EQ(p->getShader(2)->getName(), "loa_fixed_function.frag.glsl");
+        EXPECT_EQ(p->getShader(3)->getName(), s->getFragmentShader());
+        EXPECT_EQ(p->getShader(3)->getType(), osg::Shader::FRAGMENT);
+        EXPECT_NE(p->getShader(3)->getShaderSource().find("loa_styleColor"), std::string::npos) << name;
     }
     osg::ref_ptr<GraphicStyle> missing = new GraphicStyle;
     missing->setName("missing");
@@ -337,8 +340,8 @@ TEST(GraphicStyleTest, AStyleShaderIsOverriddenThroughOsgFilePath)
     osg::ref_ptr<osg::Program> p =
         GraphicStyle::createBuiltin("blueprint")->createProgram({"loa_plain.vert.glsl"});
     loatest::setFilePath("");
-    ASSERT_EQ(p->getNumShaders(), 2u);
-    EXPECT_EQ(p->getShader(1)->getShaderSource(), text);
+    ASSERT_EQ(p->getNumShaders(), 3u);
+    EXPECT_EQ(p->getShader(2)->getShaderSource(), text);
 }
 
 // --- catalog -------------------------------------------------------------------------------------

@@ -93,9 +93,31 @@ TEST(ImageFilterTest, ConvertsImageFormatsAndRejectsBadOnes)
     {
         EXPECT_NE(std::string(e.what()).find("'nothing.png' is empty"), std::string::npos) << e.what();
     }
+    // S3TC is decoded (one DXT1 block, every texel colour 0 = pure red); other compressed
+    // formats are refused, naming the format.
+    unsigned char block[8] = {0x00, 0xF8, 0x1F, 0x00, 0x00, 0x00, 0x00, 0x00};
     osg::ref_ptr<osg::Image> dxt = new osg::Image;
-    dxt->allocateImage(4, 4, 1, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, GL_UNSIGNED_BYTE);
-    EXPECT_THROW(FilterImage::fromImage(*dxt), std::invalid_argument);
+    dxt->setImage(4, 4, 1, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, GL_UNSIGNED_BYTE,
+                  block, osg::Image::NO_DELETE);
+    const FilterImage red = FilterImage::fromImage(*dxt);
+    EXPECT_FLOAT_EQ(red.texel(3, 3)[0], 1.0f);
+    EXPECT_FLOAT_EQ(red.texel(3, 3)[1], 0.0f);
+    EXPECT_FLOAT_EQ(red.texel(3, 3)[3], 1.0f);
+    osg::ref_ptr<const osg::Image> rgb = FilterImage::toRGB8(*dxt);
+    EXPECT_EQ(rgb->getPixelFormat(), GLenum(GL_RGB));
+    EXPECT_EQ(int(rgb->data(2, 1)[0]), 255);
+    osg::ref_ptr<osg::Image> rgtc = new osg::Image;
+    rgtc->setImage(4, 4, 1, GL_COMPRESSED_RED_RGTC1_EXT, GL_COMPRESSED_RED_RGTC1_EXT, GL_UNSIGNED_BYTE, block,
+                   osg::Image::NO_DELETE);
+    try
+    {
+        FilterImage::fromImage(*rgtc);
+        ADD_FAILURE() << "RGTC was accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("compressed pixel format 0x8dbb"), std::string::npos) << e.what();
+    }
     EXPECT_THROW(FilterImage(-1, 3), std::invalid_argument);
     EXPECT_THROW(FilterImage(FilterImage::maxDimension() + 1, 1), std::invalid_argument);
 }

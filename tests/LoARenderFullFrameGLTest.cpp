@@ -8,11 +8,14 @@
 
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/city/CityTextures>
 #include <osgLoA/compositing/ReferenceCompositor>
 #include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/StylePreparation>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageFile>
@@ -21,12 +24,14 @@
 #include <osg/Geometry>
 #include <osg/ShapeDrawable>
 #include <osgDB/FileUtils>
+#include <osgDB/FileNameUtils>
 #include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <random>
 
@@ -275,6 +280,15 @@ Pose poseOf(const TestScene& scene, const std::string& camera, double aspect)
         return p;
     }
     OffscreenRenderer::framingPose(scene.model->getBound(), p.fovy, aspect, p.eye, p.center, p.up);
+    if (camera == "near")
+    {
+        // Closer than the framing pose: textured surfaces large enough on screen to show their
+        // texture detail (the abstract style's tests).
+        const osg::BoundingSphere bs = scene.model->getBound();
+        p.center = bs.center();
+        p.eye = bs.center() + osg::Vec3d(0.18, -0.3, 0.16) * bs.radius();
+        p.up = osg::Vec3d(0, 0, 1);
+    }
     if (camera == "top")
     {
         const osg::BoundingSphere bs = scene.model->getBound();
@@ -525,4 +539,189 @@ TEST(LoARenderFullFrameGLTest, NoBackgroundLeaksInRealScenes)
     if (scenes.empty()) GTEST_SKIP() << "no real test scene: run scripts/fetch-test-data";
     for (const TestScene& scene : scenes)
         expectNoLeaks(scene, {"oblique", "top"}, 800, 450);
+}
+
+// ------------------------------------------------------------------------------------------
+// The paper's abstract style (paper 004 §3.1; TextureAbstraction, StylePreparation): textures
+// abstracted per mip level, colour and outlines blended at render time, prepared once per
+// model with a progress line; it removes detail on every test scene.
+namespace
+{
+/** Detail measures over the pixels covered (not the clear colour) in both frames, with their 3x3
+ *  neighbourhoods: `energy` is the mean of min(|L|, 16)^2, L the 4-neighbour Laplacian of the
+ *  luma (0..255): the frame's fine high-frequency energy, texture grain and noise; the clamp
+ *  keeps the few strong geometric edges (silhouettes, windows, which both styles draw) from
+ *  dominating it. `speckle` is the fraction of pixels whose luma lies more than 16/255 above or
+ *  below all 8 neighbours (isolated dots, what per-texel quantization made). */
+struct Detail
+{
+    double energy = 0.0, speckle = 0.0;
+    long long pixels = 0;
+};
+
+double luma(const osg::Image& img, int x, int y)
+{
+    const unsigned char* p = img.data(x, y);
+    return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+}
+
+Detail detailOf(const osg::Image& img, const osg::Image& maskA, const osg::Image& maskB, const osg::Vec4& clear)
+{
+    auto isClear = [&](const osg::Image& m, int x, int y)
+    {
+        const unsigned char* p = m.data(x, y);
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(int(p[c]) - int(std::lround(clear[c] * 255.0f))) > 2) return false;
+        return true;
+    };
+    Detail d;
+    long long speckles = 0;
+    for (int y = 1; y + 1 < img.t(); ++y)
+        for (int x = 1; x + 1 < img.s(); ++x)
+        {
+            bool covered = true;
+            for (int j = -1; j <= 1 && covered; ++j)
+                for (int i = -1; i <= 1 && covered; ++i)
+                    covered = !isClear(maskA, x + i, y + j) && !isClear(maskB, x + i, y + j);
+            if (!covered) continue;
+            const double c = luma(img, x, y);
+            const double lap =
+                4.0 * c - luma(img, x - 1, y) - luma(img, x + 1, y) - luma(img, x, y - 1) - luma(img, x, y + 1);
+            const double clamped = std::min(std::fabs(lap), 16.0);
+            d.energy += clamped * clamped;
+            bool above = true, below = true;
+            for (int j = -1; j <= 1; ++j)
+                for (int i = -1; i <= 1; ++i)
+                    if (i || j)
+                    {
+                        const double n = luma(img, x + i, y + j);
+                        above = above && c > n + 16.0;
+                        below = below && c < n - 16.0;
+                    }
+            if (above || below) ++speckles;
+            ++d.pixels;
+        }
+    if (d.pixels)
+    {
+        d.energy /= double(d.pixels);
+        d.speckle = double(speckles) / double(d.pixels);
+    }
+    return d;
+}
+
+std::string filterCacheDir()
+{
+    const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/filter-cache";
+    osgDB::makeDirectory(dir);
+    return dir;
+}
+
+osg::ref_ptr<osg::Image> styledFrame(const TestScene& scene, const std::string& style, const std::string& camera,
+                                     int width, int height, const osg::Vec4& clear, bool edges)
+{
+    osg::ref_ptr<UsageScenario> s = homogeneous(style);
+    osg::ref_ptr<LoANode> loa = loaNode(scene.model.get(), s.get());
+    StylePreparation::Options o;
+    o.cacheDir = filterCacheDir();
+    o.progress = [](const std::string&) {};
+    loa->setStylePreparationOptions(o);
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.edges = edges;
+    loa->getRenderer()->setSettings(rs);
+    return renderFrame(loa.get(), scene, camera, width, height, nullptr, clear);
+}
+
+/** Texture detail: the abstract style's colour (outlines and G-buffer edges off, so that only
+ *  the texture abstraction differs) against photorealistic, both without edges; dots: the whole
+ *  abstract style (colour, DoG outlines, edges) against photorealistic with its edges. */
+void expectAbstraction(const TestScene& scene, const std::string& camera, int width, int height)
+{
+    const osg::Vec4 clear(0.62f, 0.75f, 0.90f, 1.0f);
+    const std::string name = scene.name + "-" + camera + "-" + std::to_string(width) + "x" + std::to_string(height);
+    if (!GraphicStyleCatalog::instance().contains("abstract-colour-only"))
+    {
+        osg::ref_ptr<GraphicStyle> colourOnly = GraphicStyleCatalog::instance().create("abstract");
+        colourOnly->setName("abstract-colour-only");
+        colourOnly->getParameter("loa_abstract_outlineBlend")->set(0.0f);
+        GraphicStyleCatalog::instance().add(*colourOnly);
+    }
+    osg::ref_ptr<osg::Image> photo = styledFrame(scene, "photorealistic", camera, width, height, clear, false);
+    osg::ref_ptr<osg::Image> colour = styledFrame(scene, "abstract-colour-only", camera, width, height, clear, false);
+    osg::ref_ptr<osg::Image> full = styledFrame(scene, "abstract", camera, width, height, clear, true);
+    keep(*photo, "abstract-" + name + "-photorealistic");
+    keep(*colour, "abstract-" + name + "-colour-only");
+    keep(*full, "abstract-" + name + "-abstract");
+    const Detail p = detailOf(*photo, *photo, *colour, clear);
+    const Detail c = detailOf(*colour, *photo, *colour, clear);
+    const Detail a = detailOf(*full, *photo, *full, clear);
+    std::cout << "abstract " << name << ": high-frequency energy of the abstracted colour " << c.energy
+              << " (photorealistic " << p.energy << ", ratio " << c.energy / p.energy
+              << "), with outlines and edges " << a.energy << "; dots " << 100.0 * a.speckle
+              << " % (photorealistic " << 100.0 * p.speckle << " %), " << p.pixels << " covered pixels\n";
+    ASSERT_GT(p.pixels, (long long)(width) * height / 20) << name << ": the scene covers too little of the frame";
+    // Bars: the abstracted colour keeps at most 80 % of the photorealistic frame's fine
+    // high-frequency energy (measured 53-77 %), the whole style with its outlines and edges less
+    // than all of it (measured 60-96 %: the lines are the point of the style); the whole style
+    // makes at most twice the photorealistic frame's isolated dots plus 0.05 % of the pixels
+    // (per-texel quantization of a raw texture made dots all over textured ground).
+    EXPECT_LT(c.energy, 0.8 * p.energy) << name;
+    EXPECT_LT(a.energy, p.energy) << name;
+    EXPECT_LE(a.speckle, 2.0 * p.speckle + 0.0005) << name;
+}
+} // namespace
+
+TEST(LoARenderFullFrameGLTest, AbstractStyleRemovesDetailOnTheDemoCity)
+{
+    const TestScene city = demoCity();
+    expectAbstraction(city, "street", 1920, 1080);
+    expectAbstraction(city, "oblique", 640, 360);
+}
+
+TEST(LoARenderFullFrameGLTest, AbstractStyleRemovesDetailOnRealScenes)
+{
+    const std::vector<TestScene> scenes = realScenes();
+    if (scenes.empty()) GTEST_SKIP() << "no real test scene: run scripts/fetch-test-data";
+    for (const TestScene& scene : scenes)
+        expectAbstraction(scene, "near", scene.name == "torcs-street-1" ? 1920 : 801,
+                          scene.name == "torcs-street-1" ? 1080 : 451);
+}
+
+// Prepared once per model: the first preparation filters every texture of the demo city (two
+// filtered textures each: colour and outline; 6 facade styles + 8 surface kinds by hand from
+// CityTextures) with a progress line, a second preparation of the same model does nothing, and
+// a second model with the same textures reads every pyramid from the cache.
+TEST(LoARenderFullFrameGLTest, AbstractStyleIsPreparedOncePerModelWithProgress)
+{
+    const std::string dir = loatest::freshDirectory("filter-cache-once");
+    osg::ref_ptr<UsageScenario> abstract = homogeneous("abstract");
+    std::vector<std::string> lines;
+    StylePreparation::Options o;
+    o.cacheDir = dir;
+    o.progress = [&](const std::string& l) { lines.push_back(l); };
+    ASSERT_EQ(CityTextures::facadeStyles().size(), 6u);
+    const unsigned expected = 2u * (6u + 8u);
+
+    osg::ref_ptr<osg::Node> city = CityGenerator(CityParameters()).generate();
+    const StylePreparation::Report first = StylePreparation::prepare(*city, *abstract, o);
+    ASSERT_EQ(first.styles, std::vector<std::string>{"abstract"});
+    EXPECT_EQ(first.abstractTextures, expected);
+    EXPECT_EQ(first.abstractFromCache, 0u);
+    EXPECT_EQ(first.skipped, 0u);
+    ASSERT_GE(lines.size(), 2u);
+    EXPECT_NE(lines.front().find("0/" + std::to_string(expected)), std::string::npos) << lines.front();
+    EXPECT_NE(lines.back().find(std::to_string(expected) + "/" + std::to_string(expected) + " done"),
+              std::string::npos)
+        << lines.back();
+    EXPECT_EQ(StylePreparation::preparedStyles(*city), std::vector<std::string>{"abstract"});
+
+    lines.clear();
+    const StylePreparation::Report again = StylePreparation::prepare(*city, *abstract, o);
+    EXPECT_TRUE(again.styles.empty());
+    EXPECT_EQ(again.abstractTextures, 0u);
+    EXPECT_TRUE(lines.empty());
+
+    osg::ref_ptr<osg::Node> second = CityGenerator(CityParameters()).generate();
+    const StylePreparation::Report cached = StylePreparation::prepare(*second, *abstract, o);
+    EXPECT_EQ(cached.abstractTextures, expected);
+    EXPECT_EQ(cached.abstractFromCache, expected);
 }

@@ -349,6 +349,46 @@ TEST(PaletteLookupTest, AttachPutsOnePalettePerTextureOnItsStateSets)
     EXPECT_THROW(PaletteMapping::attach(*root, o), std::invalid_argument);
 }
 
+// A luminance texture gets a palette of its greys; a texture in a format the palette path
+// cannot read (RGTC) is skipped by name, the rest of the scene still gets its palettes.
+TEST(PaletteLookupTest, AttachReadsLuminanceAndSkipsUnreadableFormatsByName)
+{
+    osg::ref_ptr<osg::Image> grey = new osg::Image;
+    grey->allocateImage(2, 2, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE);
+    const unsigned char g[4] = {10, 10, 200, 90};
+    std::copy(g, g + 4, grey->data());
+    grey->setFileName("concrete.rgb");
+    unsigned char blocks[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    osg::ref_ptr<osg::Image> rgtc = new osg::Image;
+    rgtc->setImage(4, 4, 1, GL_COMPRESSED_RED_RGTC1_EXT, GL_COMPRESSED_RED_RGTC1_EXT, GL_UNSIGNED_BYTE, blocks,
+                   osg::Image::NO_DELETE);
+    rgtc->setFileName("height.dds");
+    osg::ref_ptr<osg::Geode> root = new osg::Geode;
+    osg::ref_ptr<osg::Geometry> q1 = texturedQuad(0), q2 = texturedQuad(2);
+    q1->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(grey.get()));
+    q2->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(rgtc.get()));
+    root->addDrawable(q1.get());
+    root->addDrawable(q2.get());
+    std::vector<std::string> skipped;
+    PaletteMapping::Options o;
+    o.skipped = &skipped;
+    EXPECT_EQ(PaletteMapping::attach(*root, o), 1u);
+    TexturePalette* p = PaletteMapping::paletteOf(*q1->getStateSet());
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->getLevels(), 3u); // greys 10, 200, 90
+    const osg::Image* palette = p->getPaletteImage();
+    for (int k = 0; k < palette->s(); ++k)
+    {
+        const unsigned char* c = palette->data(k, palette->t() - 1); // the finest level: the greys
+        EXPECT_NEAR(int(c[0]), int(c[1]), 1);
+        EXPECT_NEAR(int(c[1]), int(c[2]), 1);
+    }
+    EXPECT_FALSE(PaletteMapping::paletteOf(*q2->getStateSet()));
+    ASSERT_EQ(skipped.size(), 1u);
+    EXPECT_NE(skipped[0].find("palette: skipped texture 'height.dds'"), std::string::npos) << skipped[0];
+    EXPECT_NE(skipped[0].find("0x8dbb"), std::string::npos) << skipped[0];
+}
+
 TEST(PaletteLookupTest, PaletteStyleIsInTheCatalog)
 {
     ASSERT_TRUE(GraphicStyleCatalog::instance().contains("palette"));

@@ -399,11 +399,78 @@ TEST(TextureHistogramTest, BadInputIsRefusedNamingIt)
         EXPECT_NE(std::string(e.what()).find("range u [0.000000, 2048.000000]"), std::string::npos)
             << e.what();
     }
-    osg::ref_ptr<osg::Image> grey = new osg::Image;
-    grey->allocateImage(2, 2, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE);
-    EXPECT_THROW(TH::colorTable(*grey, std::vector<double>(4, 1.0)), std::invalid_argument);
+    // A compressed format other than S3TC is refused, naming it.
+    osg::ref_ptr<osg::Image> rgtc = new osg::Image;
+    std::vector<unsigned char>* blocks = new std::vector<unsigned char>(8, 0);
+    rgtc->setImage(4, 4, 1, GL_COMPRESSED_RED_RGTC1_EXT, GL_COMPRESSED_RED_RGTC1_EXT, GL_UNSIGNED_BYTE,
+                   blocks->data(), osg::Image::NO_DELETE);
+    try
+    {
+        TH::colorTable(*rgtc, std::vector<double>(16, 1.0));
+        ADD_FAILURE() << "an RGTC image was accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("0x8dbb"), std::string::npos) << e.what();
+    }
+    delete blocks;
     osg::ref_ptr<osg::Image> rgb = new osg::Image;
     rgb->allocateImage(2, 2, 1, GL_RGB, GL_UNSIGNED_BYTE);
     EXPECT_THROW(TH::colorTable(*rgb, std::vector<double>(3, 1.0)), std::invalid_argument);
     EXPECT_THROW(TH::colorTable(*rgb, {1.0, -1.0, 0.0, 0.0}), std::invalid_argument);
+}
+
+// Any texture format a model brings (issue: "--style palette on a model with a luminance texture
+// aborts the whole render"): luminance, luminance-alpha and S3TC images give the colour table of
+// the colours a shader samples from them, counted by hand.
+TEST(TextureHistogramTest, ColorTableReadsLuminanceLuminanceAlphaAndS3TC)
+{
+    osg::ref_ptr<osg::Image> grey = new osg::Image;
+    grey->allocateImage(2, 2, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE);
+    const unsigned char g[4] = {10, 10, 200, 77};
+    std::copy(g, g + 4, grey->data());
+    auto t = TH::colorTable(*grey, {1.0, 2.0, 0.5, 0.0});
+    ASSERT_EQ(t.size(), 2u); // 77 has weight 0
+    EXPECT_EQ(int(t[0].r), 10);
+    EXPECT_EQ(int(t[0].g), 10);
+    EXPECT_EQ(int(t[0].b), 10);
+    EXPECT_DOUBLE_EQ(t[0].weight, 3.0);
+    EXPECT_EQ(int(t[1].r), 200);
+    EXPECT_EQ(int(t[1].b), 200);
+    EXPECT_DOUBLE_EQ(t[1].weight, 0.5);
+
+    osg::ref_ptr<osg::Image> la = new osg::Image;
+    la->allocateImage(2, 1, 1, GL_LUMINANCE_ALPHA, GL_UNSIGNED_BYTE);
+    const unsigned char l[4] = {50, 255, 50, 0};
+    std::copy(l, l + 4, la->data());
+    t = TH::colorTable(*la, {1.0, 1.0});
+    ASSERT_EQ(t.size(), 1u); // alpha is ignored: one colour (50, 50, 50)
+    EXPECT_EQ(int(t[0].g), 50);
+    EXPECT_DOUBLE_EQ(t[0].weight, 2.0);
+
+    // One DXT1 block: colour 0 = pure red (565 0xF800), colour 1 = pure blue (0x001F); row y of
+    // the block uses index y, so rows are red, blue, 2/3 red + 1/3 blue, 1/3 red + 2/3 blue
+    // (the S3TC four-colour mode, colour 0 > colour 1).
+    unsigned char block[8] = {0x00, 0xF8, 0x1F, 0x00, 0x00, 0x55, 0xAA, 0xFF};
+    osg::ref_ptr<osg::Image> dxt = new osg::Image;
+    dxt->setImage(4, 4, 1, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, GL_UNSIGNED_BYTE,
+                  block, osg::Image::NO_DELETE);
+    std::vector<double> w(16, 1.0);
+    for (int x = 0; x < 4; ++x)
+        w[std::size_t(x)] = 4.0; // row 0 (red) weighs most
+    t = TH::colorTable(*dxt, w);
+    ASSERT_EQ(t.size(), 4u);
+    EXPECT_EQ(int(t[0].r), 255);
+    EXPECT_EQ(int(t[0].g), 0);
+    EXPECT_EQ(int(t[0].b), 0);
+    EXPECT_DOUBLE_EQ(t[0].weight, 16.0);
+    // The other three rows weigh 4 each, sorted by colour: (0,0,255), ~(85,0,170), ~(170,0,85).
+    // S3TC leaves the rounding of the interpolated colours to the decoder (OSG's reference decoder
+    // interpolates the 5-bit values: 82 and 173); tolerance 4.
+    EXPECT_EQ(int(t[1].r), 0);
+    EXPECT_EQ(int(t[1].b), 255);
+    EXPECT_NEAR(int(t[2].r), 85, 4);
+    EXPECT_NEAR(int(t[2].b), 170, 4);
+    EXPECT_NEAR(int(t[3].r), 170, 4);
+    EXPECT_NEAR(int(t[3].b), 85, 4);
 }

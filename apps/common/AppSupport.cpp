@@ -43,6 +43,31 @@ int runTool(const char* tool, const std::function<int()>& body)
     }
 }
 
+int runTool(const char* tool, const std::function<void()>& parse, const std::function<int()>& work)
+{
+    return runTool(tool,
+                   [&]
+                   {
+                       parse();
+                       try
+                       {
+                           return work();
+                       }
+                       catch (const UsageError&)
+                       {
+                           throw;
+                       }
+                       catch (const osgLoA::HeadlessContextError&)
+                       {
+                           throw;
+                       }
+                       catch (const std::invalid_argument& e)
+                       {
+                           throw std::runtime_error(e.what());
+                       }
+                   });
+}
+
 Args::Args(int argc, char** argv)
 {
     for (int i = 1; i < argc; ++i)

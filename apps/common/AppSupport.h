@@ -37,6 +37,10 @@ enum ExitCode
  *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,
  *  anything else 1. */
 int runTool(const char* tool, const std::function<int()>& body);
+/** As runTool, in two phases: std::invalid_argument is a bad argument (2) only while parse
+ *  runs; from work it is a problem of the data the tool was given (a model, a texture, a
+ *  scenario file), exit 1. UsageError is 2 in either phase. */
+int runTool(const char* tool, const std::function<void()>& parse, const std::function<int()>& work);
 
 /** argv as a queue of words with strict option parsing. */
 class Args

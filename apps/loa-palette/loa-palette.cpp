@@ -4,6 +4,7 @@
 #include "../common/AppSupport.h"
 #include "../common/ProgressBar.h"
 
+#include <osgLoA/filtering/FilterImage>
 #include <osgLoA/palette/PaletteHierarchy>
 #include <osgLoA/palette/TextureHistogram>
 #include <osgLoA/palette/WeightedColor>
@@ -441,10 +442,21 @@ int run(const Options& o)
                             "): its file is missing, corrupt or unreadable";
             else if (!supportedFormat(*image))
             {
-                char b[64];
-                std::snprintf(b, sizeof b, "0x%x/0x%x", unsigned(image->getPixelFormat()),
-                              unsigned(image->getDataType()));
-                u.problem = std::string("has pixel format ") + b + ", not 8-bit RGB, RGBA, BGR or BGRA";
+                // Luminance, LA, 16-bit, float and S3TC images are converted to 8-bit RGB(A)
+                // (the colours a shader samples); anything else is skipped by name.
+                try
+                {
+                    osg::ref_ptr<const osg::Image> rgb = osgLoA::FilterImage::toRGB8(*image);
+                    u.image = const_cast<osg::Image*>(rgb.get());
+                }
+                catch (const std::invalid_argument& e)
+                {
+                    char b[64];
+                    std::snprintf(b, sizeof b, "0x%x/0x%x", unsigned(image->getPixelFormat()),
+                                  unsigned(image->getDataType()));
+                    u.problem = std::string("has pixel format ") + b + ", which the palette cannot read (" +
+                                e.what() + ")";
+                }
             }
             if (image) unitOf.emplace(image, units.size());
             units.push_back(u);
@@ -669,5 +681,7 @@ int run(const Options& o)
 
 int main(int argc, char** argv)
 {
-    return loa::runTool("loa-palette", [&] { return run(parse(argc, argv)); });
+    Options o;
+    return loa::runTool(
+        "loa-palette", [&] { o = parse(argc, argv); }, [&] { return run(o); });
 }

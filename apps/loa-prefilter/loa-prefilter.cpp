@@ -383,5 +383,7 @@ int run(const Options& o)
 
 int main(int argc, char** argv)
 {
-    return loa::runTool("loa-prefilter", [&] { return run(parse(argc, argv)); });
+    Options o;
+    return loa::runTool(
+        "loa-prefilter", [&] { o = parse(argc, argv); }, [&] { return run(o); });
 }

@@ -6,9 +6,9 @@
 #include <osgLoA/abstraction/AbstractionStyleCatalog>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
-#include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -350,25 +350,35 @@ int run(const Options& o)
             throw loa::UsageError("--abuffer-samples " + std::to_string(o.samplesABuffer) +
                                   " exceeds this context's GL_MAX_SAMPLES (" +
                                   std::to_string(caps.maxSamples) + ")");
-        // The "palette" style (paper 003) maps texture colours through per-texture palettes:
-        // build them (texture-object histogram, hierarchical clustering) when a configuration uses it.
-        for (const auto& c : scenario->getConfigurations())
-            if (c->getStyle() == "palette")
-            {
-                const unsigned n = osgLoA::PaletteMapping::attach(*scene);
-                std::cout << "palette style: " << n << " texture palette(s) built\n";
-                break;
-            }
         loaNode = new osgLoA::LoANode;
         loaNode->setScenario(scenario.get());
         loaNode->addChild(scene.get());
+        // As the loa plugin does: features the model carries keep their type, the classifier's
+        // rules and the appearance fallback type the rest (a model without features would
+        // otherwise be drawn unstyled).
+        const osgLoA::FeatureClassifier::Report classified = osgLoA::FeatureClassifier().classify(*loaNode);
+        std::cout << "classifier: " << classified.summary() << "\n";
         osgLoA::TransitionRenderer::Settings rs = loaNode->getRenderer()->getSettings();
         rs.samples = o.samplesABuffer;
         rs.maxPasses = o.passesABuffer;
         loaNode->getRenderer()->setSettings(rs);
+        osgLoA::StylePreparation::Options prep;
+        prep.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+        loaNode->setStylePreparationOptions(prep);
         try
         {
+            // Also prepares the styles that need per-texture data (the abstract style's
+            // filtered textures, the palette style's palettes), with progress lines on stderr.
             loaNode->bind();
+            const osgLoA::StylePreparation::Report& r = loaNode->getStylePreparationReport();
+            for (const std::string& style : r.styles)
+                if (style == "palette")
+                    std::cout << "palette style: " << r.palettes << " texture palette(s) built\n";
+                else if (style == "abstract")
+                    std::cout << "abstract style: " << r.abstractTextures << " filtered texture(s), "
+                              << r.abstractFromCache << " from the cache\n";
+            for (const std::string& m : r.messages)
+                std::cerr << "loa-render: warning: " << m << "\n";
         }
         catch (const std::exception& e)
         {
@@ -480,5 +490,7 @@ int run(const Options& o)
 
 int main(int argc, char** argv)
 {
-    return loa::runTool("loa-render", [&] { return run(parse(argc, argv)); });
+    Options o;
+    return loa::runTool(
+        "loa-render", [&] { o = parse(argc, argv); }, [&] { return run(o); });
 }

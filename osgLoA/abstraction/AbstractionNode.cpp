@@ -45,7 +45,8 @@ enum Unit
     UNIT_OBJECT_DATA,
     UNIT_SHADING,
     UNIT_BASE,
-    UNIT_PENCIL
+    UNIT_PENCIL,
+    UNIT_SURFACE
 };
 
 const osg::StateAttribute::OverrideValue kForce =
@@ -233,32 +234,38 @@ void AbstractionNode::build()
     _idCamera = sceneCamera("loa_abstraction_ids", 0, true);
     _idCamera->setClearColor(osg::Vec4(0, 0, 0, 0));
     _shadingCamera = sceneCamera("loa_abstraction_shading", 1, true);
-    _shadingCamera->setClearColor(osg::Vec4(1, 1, 1, 1));
+    // White, alpha 0: the compositing tells the background (no surface) from lit white faces.
+    _shadingCamera->setClearColor(osg::Vec4(1, 1, 1, 0));
     _baseCamera = sceneCamera("loa_abstraction_base", 2, false);
     _normalCamera = sceneCamera("loa_abstraction_normal", 3, false); // children reset in configure()
 
     _idState = _idCamera->getOrCreateStateSet();
     _idState->setAttributeAndModes(
         ShaderLibrary::createProgram("loa_abstraction_id",
-                                     {"loa_abstraction_object.vert.glsl", "loa_abstraction_id.frag.glsl"})
+                                     {"loa_abstraction_object.vert.glsl", "loa_material_alpha.frag.glsl",
+                                      "loa_abstraction_id.frag.glsl"})
             .get(),
         kForce);
     _idState->addUniform(new osg::Uniform("loa_objectId", osg::Vec4f(0, 0, 0, 0)));
+    _idState->addUniform(new osg::Uniform("loa_baseTexture", 0)); // alpha-tested cards keep their shape
     _idState->addUniform(new osg::Uniform("loa_objectImportance", osg::Vec4f()));
     _idState->addUniform(new osg::Uniform("loa_objectWeight", osg::Vec4f()));
     _idState->setMode(GL_BLEND, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE);
 
     _shadingState = _shadingCamera->getOrCreateStateSet();
     _shadingProgram = ShaderLibrary::createProgram(
-        "loa_abstraction_shading", {"loa_abstraction_object.vert.glsl", "loa_abstraction_shading.frag.glsl"});
+        "loa_abstraction_shading", {"loa_abstraction_object.vert.glsl", "loa_material_alpha.frag.glsl",
+                                    "loa_abstraction_shading.frag.glsl"});
     _shadingState->setAttributeAndModes(_shadingProgram.get(), kForce);
     _shadingState->addUniform(new osg::Uniform("loa_objectImportance", osg::Vec4f()));
     _shadingState->addUniform(new osg::Uniform("loa_abstraction_pencil", int(UNIT_PENCIL)));
+    _shadingState->addUniform(new osg::Uniform("loa_baseTexture", 0));
     _shadingState->setMode(GL_BLEND, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE);
 
     _unshadedState = new osg::StateSet;
     _unshadedState->setAttributeAndModes(
         ShaderLibrary::createProgram("loa_abstraction_unshaded", {"loa_abstraction_object.vert.glsl",
+                                                                  "loa_material_alpha.frag.glsl",
                                                                   "loa_abstraction_unshaded.frag.glsl"})
             .get(),
         kForce);
@@ -318,6 +325,8 @@ void AbstractionNode::build()
                                   "loa_abstraction_base"};
         for (int i = 0; i < 7; ++i)
             _displayState->addUniform(new osg::Uniform(samplers[i], i), osg::StateAttribute::OVERRIDE);
+        _displayState->addUniform(new osg::Uniform("loa_abstraction_surface", int(UNIT_SURFACE)),
+                                  osg::StateAttribute::OVERRIDE);
         _internals->stagesOk = new osg::Uniform("loa_abstraction_stagesOk", true);
         _internals->stagesOk->setDataVariance(osg::Object::DYNAMIC);
         _displayState->addUniform(_internals->stagesOk.get(), osg::StateAttribute::OVERRIDE);
@@ -419,7 +428,7 @@ double AbstractionNode::memoryBytes(int width, int height) const
     const double px = double(width) * double(height);
     double bytes = px * (16.0 + 4.0); // normal RGBA32F + its depth
     if (n.base) bytes += px * (16.0 + 4.0);
-    if (n.ids) bytes += px * (4.0 + 4.0 + 4.0);
+    if (n.ids) bytes += px * (4.0 + 4.0 + 8.0 + 4.0); // ids, object data, surface RGBA16F, depth
     if (n.shading) bytes += px * (4.0 + 4.0);
     if (n.painterly) bytes += px * 16.0;
     if (n.edges) bytes += px * 16.0;
@@ -437,7 +446,7 @@ void AbstractionNode::configure()
         << int(s.getAdaptivity()) << ' ' << s.getSegmentation() << s.getSilhouettes() << ' '
         << s.getPencilLevels() << ' ' << s.getPencilAnisotropy() << ' ' << s.getKuwaharaRadius() << ' '
         << s.getKuwaharaIterations() << ' ' << s.getKuwaharaIterationsFocus() << ' ' << int(s.getEdgeSource())
-        << ' ' << s.getDogSigma() << ' ' << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getCannyLow()
+        << ' ' << s.getDogSigma() << ' ' << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getDogEpsilon() << ' ' << s.getCannyLow()
         << ' ' << s.getCannyHigh();
     if (key.str() == _configuredKey) return;
     _configuredKey = key.str();
@@ -533,6 +542,7 @@ void AbstractionNode::configure()
             dog->setSigmaE(s.getDogSigma());
             dog->setK(s.getDogRatio());
             dog->setTau(s.getDogTau());
+            dog->setEpsilon(s.getDogEpsilon());
             dog->setMode(DoGFilter::EDGES);
             _internals->edges = dog;
             break;
@@ -593,10 +603,14 @@ void AbstractionNode::resize(int width, int height)
     }
     _ids = n.ids ? make("loa_abstraction_ids", GL_RGBA8, GL_UNSIGNED_BYTE) : nullptr;
     _objectData = n.ids ? make("loa_abstraction_object_data", GL_RGBA8, GL_UNSIGNED_BYTE) : nullptr;
+    // View-space normal and depth of the front surface: silhouettes only where the surface is
+    // not continuous (objects tiling one surface meet without a line).
+    _surface = n.ids ? make("loa_abstraction_surface", GL_RGBA16F_ARB, GL_FLOAT) : nullptr;
     if (n.ids)
     {
         attach(_idCamera.get(), osg::Camera::COLOR_BUFFER0, _ids.get());
         attach(_idCamera.get(), osg::Camera::COLOR_BUFFER1, _objectData.get());
+        attach(_idCamera.get(), osg::Camera::COLOR_BUFFER2, _surface.get());
         finish(_idCamera.get(), true);
     }
     _shading = n.shading ? make("loa_abstraction_shading", GL_RGBA8, GL_UNSIGNED_BYTE) : nullptr;
@@ -620,6 +634,7 @@ void AbstractionNode::resize(int width, int height)
     bind(*_displayState, UNIT_EDGES, _edges.get());
     bind(*_displayState, UNIT_IDS, _ids.get());
     bind(*_displayState, UNIT_OBJECT_DATA, _objectData.get());
+    bind(*_displayState, UNIT_SURFACE, _surface.get());
     bind(*_displayState, UNIT_SHADING, _shading.get());
     bind(*_displayState, UNIT_BASE, n.base ? _base.get() : _normal.get());
     bind(*_focusState, UNIT_IDS, _ids.get());
@@ -1048,8 +1063,8 @@ void AbstractionNode::releaseGLObjects(osg::State* state) const
     for (const osg::Camera* c : {_baseCamera.get(), _normalCamera.get(), _idCamera.get(),
                                  _shadingCamera.get(), _focusCamera.get(), _displayCamera.get()})
         c->releaseGLObjects(state);
-    for (const osg::Texture2D* t : {_base.get(), _normal.get(), _ids.get(), _objectData.get(), _shading.get(),
-                                    _painterly.get(), _edges.get()})
+    for (const osg::Texture2D* t : {_base.get(), _normal.get(), _ids.get(), _objectData.get(), _surface.get(),
+                                    _shading.get(), _painterly.get(), _edges.get()})
         if (t) t->releaseGLObjects(state);
     if (_pencil.valid()) _pencil->releaseGLObjects(state);
     for (unsigned i = 0; i < _internals->contexts.size(); ++i)

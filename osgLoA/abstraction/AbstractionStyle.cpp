@@ -209,6 +209,7 @@ AbstractionStyle::AbstractionStyle(const AbstractionStyle& o, const osg::CopyOp&
       _kuwaharaRadius(o._kuwaharaRadius), _kuwaharaIterations(o._kuwaharaIterations),
       _kuwaharaIterationsFocus(o._kuwaharaIterationsFocus), _edgeDetector(o._edgeDetector),
       _edgeSource(o._edgeSource), _dogSigma(o._dogSigma), _dogRatio(o._dogRatio), _dogTau(o._dogTau),
+      _dogEpsilon(o._dogEpsilon),
       _sobelThreshold(o._sobelThreshold), _sobelThresholdFar(o._sobelThresholdFar), _cannyLow(o._cannyLow),
       _cannyHigh(o._cannyHigh), _silhouettes(o._silhouettes), _edgeOpacity(o._edgeOpacity),
       _edgeOpacityFar(o._edgeOpacityFar), _combination(o._combination), _brightening(o._brightening),
@@ -242,6 +243,7 @@ void AbstractionStyle::validate() const
     checkFloat("dogSigma", _dogSigma, 0.0f, 8.0f, true);
     checkFloat("dogRatio", _dogRatio, 1.0f, 4.0f, true);
     checkFloat("dogTau", _dogTau, 0.0f, 1.0f);
+    checkFloat("dogEpsilon", _dogEpsilon, -10.0f, 10.0f);
     checkFloat("sobelThreshold", _sobelThreshold, 0.0f, 4.0f, true);
     checkFloat("sobelThresholdFar", _sobelThresholdFar, 0.0f, 4.0f, true);
     checkFloat("cannyLow", _cannyLow, 0.0f, 4.0f);

@@ -23,6 +23,18 @@ namespace
 const char* const kSourceName = "loa.filter.source";
 
 /** A filter's identity for sharing results: class and canonical parameter string. */
+/** A texture's name for messages: its own name, else its image's file name, else "unnamed". */
+std::string textureName(const osg::Texture2D& t)
+{
+    if (!t.getName().empty() && t.getName() != kSourceName) return t.getName();
+    if (const osg::Image* i = t.getImage())
+    {
+        if (!i->getFileName().empty()) return i->getFileName();
+        if (!i->getName().empty()) return i->getName();
+    }
+    return "unnamed texture";
+}
+
 std::string filterKey(const ImageFilter* f)
 {
     return f ? std::string(f->className()) + "|" + f->getParameterString() : std::string();
@@ -198,6 +210,41 @@ FilterConfiguration::Report FilterConfiguration::apply(osg::Node& scene, const O
     OwnerCollector collector;
     scene.accept(collector);
 
+    // The channel textures a state set has (its own, not inherited), by the original source.
+    std::set<const osg::Texture*> reported;
+    auto sourceOf = [&](osg::StateSet& ss, const FilterChannel& c) -> osg::Texture2D*
+    {
+        osg::Texture* t =
+            dynamic_cast<osg::Texture*>(ss.getTextureAttribute(c.getUnit(), osg::StateAttribute::TEXTURE));
+        if (!t) return nullptr;
+        osg::Texture2D* t2 = dynamic_cast<osg::Texture2D*>(sourceTexture(t));
+        if (!t2 || !t2->getImage())
+        {
+            if (reported.insert(t).second)
+            {
+                ++report.skipped;
+                report.messages.push_back("channel '" + c.getName() + "': texture '" + t->getName() + "' (" +
+                                          t->className() + ") is not a 2D texture with an image; not filtered");
+            }
+            return nullptr;
+        }
+        return t2;
+    };
+
+    // How many (source texture, filter) pairs there are, for the progress callback.
+    unsigned total = 0;
+    if (options.progress)
+    {
+        std::set<std::pair<osg::Texture2D*, std::string>> pairs;
+        for (osg::StateSet* ss : collector.order)
+            for (const FilterChannel* c : channels)
+                if (osg::Texture2D* source = sourceOf(*ss, *c))
+                    for (const Use& u : collector.uses[ss])
+                        if (ImageFilter* f = c->filterFor(u.type)) pairs.insert({source, filterKey(f)});
+        total = unsigned(pairs.size());
+    }
+    unsigned done = 0, cached = 0;
+
     // Filtered textures, one per (source texture, filter); null for a texture MipmapFilter
     // refuses (a compressed or packed image), reported once and left unfiltered.
     std::map<std::pair<osg::Texture2D*, std::string>, osg::ref_ptr<osg::Texture2D>> filtered;
@@ -210,14 +257,18 @@ FilterConfiguration::Report FilterConfiguration::apply(osg::Node& scene, const O
         if (options.engine && filter.hasGpuImplementation()) mf->setEngine(options.engine);
         mf->setNumThreads(options.threads);
         osg::ref_ptr<osg::Texture2D> out;
+        if (options.progress) options.progress(done, total, textureName(source));
+        ++done;
         try
         {
-            out = mf->filterTexture(source);
+            MipmapFilter::Result result;
+            out = mf->filterTexture(source, &result);
+            if (result.source == MipmapFilter::CACHE) ++cached;
         }
         catch (const std::invalid_argument& e)
         {
             ++report.skipped;
-            report.messages.push_back(e.what());
+            report.messages.push_back(textureName(source) + ": " + e.what());
             filtered[key] = nullptr;
             return nullptr;
         }
@@ -227,23 +278,6 @@ FilterConfiguration::Report FilterConfiguration::apply(osg::Node& scene, const O
         ++report.textures;
         filtered[key] = out;
         return out.get();
-    };
-
-    // The channel textures a state set has (its own, not inherited), by the original source.
-    auto sourceOf = [&](osg::StateSet& ss, const FilterChannel& c) -> osg::Texture2D*
-    {
-        osg::Texture* t =
-            dynamic_cast<osg::Texture*>(ss.getTextureAttribute(c.getUnit(), osg::StateAttribute::TEXTURE));
-        if (!t) return nullptr;
-        osg::Texture2D* t2 = dynamic_cast<osg::Texture2D*>(sourceTexture(t));
-        if (!t2 || !t2->getImage())
-        {
-            ++report.skipped;
-            report.messages.push_back("channel '" + c.getName() + "': texture '" + t->getName() + "' (" +
-                                      t->className() + ") is not a 2D texture with an image; not filtered");
-            return nullptr;
-        }
-        return t2;
     };
 
     for (osg::StateSet* ss : collector.order)
@@ -318,6 +352,8 @@ FilterConfiguration::Report FilterConfiguration::apply(osg::Node& scene, const O
                 ++report.unfiltered;
         }
     }
+    if (options.progress) options.progress(total, total, std::string());
+    if (options.fromCache) *options.fromCache = cached;
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return report;

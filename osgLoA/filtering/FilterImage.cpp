@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace osgLoA
@@ -117,9 +118,27 @@ FilterImage FilterImage::fromImage(const osg::Image& image)
         throw std::invalid_argument("FilterImage: image '" + image.getFileName() + "' is empty (" +
                                     std::to_string(image.s()) + "x" + std::to_string(image.t()) + ")");
     if (image.r() != 1) throw std::invalid_argument("FilterImage: image '" + image.getFileName() + "' is 3D");
-    if (image.isCompressed())
-        throw std::invalid_argument("FilterImage: image '" + image.getFileName() + "' is compressed");
     const GLenum format = image.getPixelFormat();
+    if (image.isCompressed())
+    {
+        if (!isS3TC(format))
+        {
+            char b[64];
+            std::snprintf(b, sizeof b, "compressed pixel format 0x%x (only S3TC/DXT is decoded)",
+                          unsigned(format));
+            throw std::invalid_argument("FilterImage: image '" + image.getFileName() + "': " + b);
+        }
+        FilterImage out(image.s(), image.t());
+        const bool alpha = format != GL_COMPRESSED_RGB_S3TC_DXT1_EXT;
+        for (int y = 0; y < image.t(); ++y)
+            for (int x = 0; x < image.s(); ++x)
+            {
+                const osg::Vec4 c = image.getColor(unsigned(x), unsigned(y));
+                float* q = out.texel(x, y);
+                q[0] = c.r(), q[1] = c.g(), q[2] = c.b(), q[3] = alpha ? c.a() : 1.0f;
+            }
+        return out;
+    }
     int channels = 0;
     int map[4] = {0, 0, 0, -1}; // source component of R, G, B, A (-1: alpha = 1)
     switch (format)
@@ -171,6 +190,38 @@ FilterImage FilterImage::fromImage(const osg::Image& image)
             for (int c = 0; c < 4; ++c)
                 q[c] = map[c] >= 0 ? componentValue(image, p, map[c]) : (map[c] == -2 ? 0.0f : 1.0f);
             if (format == GL_ALPHA) q[0] = q[1] = q[2] = 1.0f, q[3] = componentValue(image, p, 0);
+        }
+    return out;
+}
+
+bool FilterImage::isS3TC(GLenum pixelFormat)
+{
+    return pixelFormat == GL_COMPRESSED_RGB_S3TC_DXT1_EXT || pixelFormat == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
+           pixelFormat == GL_COMPRESSED_RGBA_S3TC_DXT3_EXT || pixelFormat == GL_COMPRESSED_RGBA_S3TC_DXT5_EXT;
+}
+
+osg::ref_ptr<const osg::Image> FilterImage::toRGB8(const osg::Image& image)
+{
+    const GLenum format = image.getPixelFormat();
+    if (!image.isCompressed() && image.getDataType() == GL_UNSIGNED_BYTE && image.r() == 1 && image.data() &&
+        (format == GL_RGB || format == GL_RGBA))
+        return &image;
+    const FilterImage f = fromImage(image);
+    const bool opaque = format == GL_RGB || format == GL_BGR || format == GL_LUMINANCE ||
+                        format == GL_RED || format == GL_RG || format == GL_COMPRESSED_RGB_S3TC_DXT1_EXT;
+    osg::ref_ptr<osg::Image> out = new osg::Image;
+    out->allocateImage(f.width(), f.height(), 1, opaque ? GL_RGB : GL_RGBA, GL_UNSIGNED_BYTE, 1);
+    out->setInternalTextureFormat(opaque ? GL_RGB8 : GL_RGBA8);
+    out->setFileName(image.getFileName());
+    out->setName(image.getName());
+    const int n = opaque ? 3 : 4;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+        {
+            const float* p = f.texel(x, y);
+            unsigned char* q = out->data(x, y);
+            for (int c = 0; c < n; ++c)
+                q[c] = (unsigned char)std::lround(std::min(1.0f, std::max(0.0f, p[c])) * 255.0f);
         }
     return out;
 }

@@ -311,8 +311,7 @@ osg::ref_ptr<osg::Image> MipmapFilter::filterImage(const osg::Image& image, cons
                                     "x" + std::to_string(image.t()) + ", above the limit of " +
                                     std::to_string(FilterImage::maxDimension()));
     if (image.r() != 1) throw std::invalid_argument("MipmapFilter: " + describe(image) + " is 3D");
-    if (image.isCompressed())
-        throw std::invalid_argument("MipmapFilter: " + describe(image) + " is compressed");
+    // Compressed images: FilterImage::fromImage decodes S3TC and names any other format.
 
     const std::string parameters = _filter->getParameterString();
     osg::ref_ptr<osg::Image> pyramid;

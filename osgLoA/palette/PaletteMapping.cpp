@@ -5,6 +5,7 @@
 
 #include <osg/Drawable>
 #include <osg/NodeVisitor>
+#include <osg/Notify>
 #include <osg/Texture2D>
 #include <osg/UserDataContainer>
 
@@ -61,8 +62,20 @@ unsigned PaletteMapping::attach(osg::Node& scene, const Options& options)
         for (double w : kv.second)
             any = any || w > 0.0;
         if (!any) continue;
-        palettes[kv.first] = TexturePalette::buildCached(*kv.first, kv.second, options.linkage,
-                                                         options.maxLevels, options.cacheDir);
+        try
+        {
+            palettes[kv.first] = TexturePalette::buildCached(*kv.first, kv.second, options.linkage,
+                                                             options.maxLevels, options.cacheDir);
+        }
+        catch (const std::invalid_argument& e)
+        {
+            const osg::Image& image = *kv.first;
+            const std::string line = "palette: skipped texture '" +
+                                     (image.getFileName().empty() ? image.getName() : image.getFileName()) +
+                                     "': " + e.what();
+            OSG_WARN << "osgLoA::PaletteMapping: " << line << std::endl;
+            if (options.skipped) options.skipped->push_back(line);
+        }
     }
     osg::StateSet* root = scene.getOrCreateStateSet();
     if (!root->getUniform("loa_hasPalette")) root->addUniform(new osg::Uniform("loa_hasPalette", false));

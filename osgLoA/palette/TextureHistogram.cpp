@@ -1,4 +1,5 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/filtering/FilterImage>
 #include <osgLoA/palette/TextureHistogram>
 
 #include "../render/GLProgramBuild.h"
@@ -556,22 +557,21 @@ std::vector<float> TextureHistogram::texelWeightsGpu(osg::State& state, const os
     return std::vector<float>(folded.begin(), folded.end());
 }
 
-std::vector<TextureHistogram::ColorEntry> TextureHistogram::colorTable(const osg::Image& texture,
+std::vector<TextureHistogram::ColorEntry> TextureHistogram::colorTable(const osg::Image& source,
                                                                        const std::vector<double>& weights)
 {
-    const GLenum format = texture.getPixelFormat();
-    const bool bgr = format == GL_BGR || format == GL_BGRA;
-    if ((format != GL_RGB && format != GL_RGBA && !bgr) || texture.getDataType() != GL_UNSIGNED_BYTE ||
-        texture.r() != 1 || !texture.data())
-        throw std::invalid_argument("TextureHistogram: texture format 0x" +
-                                    [&]
-                                    {
-                                        char b[32];
-                                        std::snprintf(b, sizeof(b), "%x/0x%x", unsigned(format),
-                                                      unsigned(texture.getDataType()));
-                                        return std::string(b);
-                                    }() +
-                                    " is not RGB8, RGBA8, BGR8 or BGRA8 of one 2D layer");
+    // Any format FilterImage reads (luminance, LA, BGR, 16-bit, float, S3TC) as 8-bit RGB(A);
+    // its error names the format of anything else.
+    osg::ref_ptr<const osg::Image> converted;
+    try
+    {
+        converted = FilterImage::toRGB8(source);
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw std::invalid_argument(std::string("TextureHistogram: ") + e.what());
+    }
+    const osg::Image& texture = *converted;
     const std::size_t n = std::size_t(texture.s()) * std::size_t(texture.t());
     if (weights.size() != n)
         throw std::invalid_argument("TextureHistogram: weights hold " + std::to_string(weights.size()) +
@@ -586,7 +586,7 @@ std::vector<TextureHistogram::ColorEntry> TextureHistogram::colorTable(const osg
                                             std::to_string(y) + ") is negative or not finite");
             if (w == 0) continue;
             const unsigned char* p = texture.data(x, y);
-            const unsigned r = bgr ? p[2] : p[0], gg = p[1], b = bgr ? p[0] : p[2];
+            const unsigned r = p[0], gg = p[1], b = p[2];
             sums[(r << 16) | (gg << 8) | b] += w;
         }
     std::vector<ColorEntry> out;

@@ -1,4 +1,5 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/filtering/FilterImage>
 #include <osgLoA/palette/PaletteLookup>
 #include <osgLoA/palette/TextureHistogram>
 #include <osgLoA/palette/TexturePalette>
@@ -41,8 +42,11 @@ unsigned levelsFor(std::size_t n, unsigned maxLevels)
     return unsigned(std::min<std::size_t>(std::min<std::size_t>(n, maxLevels), 65535));
 }
 
-std::string extraBytes(const osg::Image& texture, const std::vector<double>& weights)
+std::string extraBytes(const osg::Image& source, const std::vector<double>& weights)
 {
+    // The texels as 8-bit RGB(A), what the colour table reads (compressed data has no rows).
+    const osg::ref_ptr<const osg::Image> converted = FilterImage::toRGB8(source);
+    const osg::Image& texture = *converted;
     std::string extra;
     putLE(extra, std::uint32_t(texture.s()), 4);
     putLE(extra, std::uint32_t(texture.t()), 4);

@@ -59,11 +59,15 @@ osg::ref_ptr<GraphicStyle> abstractStyle()
 {
     osg::ref_ptr<GraphicStyle> s = makeStyle(
         "abstract",
-        "per-level filtered textures where FilterConfiguration provides them, else colour-quantized textures",
+        "textures abstracted per mip level (bilateral colour and DoG outlines, TextureAbstraction), "
+        "blended at render time; untextured colours quantized",
         "loa_style_abstract.frag.glsl");
     s->getParameters()->addUniform(new osg::Uniform("loa_abstract_levels", 5));
+    addFloat(*s, "loa_abstract_colorBlend", 1.0f);
+    addFloat(*s, "loa_abstract_outlineBlend", 0.6f);
     addFloat(*s, "loa_abstract_chromaStep", 0.05f);
     addFloat(*s, "loa_abstract_ambient", 0.6f);
+    s->getParameters()->addUniform(new osg::Uniform("loa_abstract_modelLighting", true));
     s->setOpaque(true);
     s->setUsesTexture(true);
     s->setEdgeColor(osg::Vec3f(0.25f, 0.25f, 0.25f));
@@ -229,7 +233,12 @@ void GraphicStyle::setUnsharpMaskRadius(float sigmaPixels)
 std::vector<std::string> GraphicStyle::shaderNames(const std::vector<std::string>& commonShaders) const
 {
     std::vector<std::string> names = commonShaders;
-    if (!_fragmentShader.empty()) names.push_back(_fragmentShader);
+    if (!_fragmentShader.empty())
+    {
+        // The fixed-function library the built-in styles call (photorealistic, abstract).
+        names.push_back("loa_fixed_function.frag.glsl");
+        names.push_back(_fragmentShader);
+    }
     return names;
 }
 

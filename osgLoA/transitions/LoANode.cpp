@@ -20,7 +20,7 @@ LoANode::LoANode() : _evaluator(new ScenarioEvaluator)
 
 LoANode::LoANode(const LoANode& other, const osg::CopyOp& copyop)
     : osg::Group(other, copyop), _scenario(other._scenario), _evaluator(new ScenarioEvaluator),
-      _renderingEnabled(other._renderingEnabled)
+      _renderingEnabled(other._renderingEnabled), _preparationOptions(other._preparationOptions)
 {
     _renderer = new TransitionRenderer(*this);
     _renderer->setSettings(other._renderer->getSettings());
@@ -110,6 +110,19 @@ void LoANode::bind()
     if (!_scenario.valid()) return;
     try
     {
+        _preparation = StylePreparation::Report();
+        for (unsigned i = 0; i < getNumChildren(); ++i)
+        {
+            const StylePreparation::Report r =
+                StylePreparation::prepare(*getChild(i), *_scenario, _preparationOptions);
+            _preparation.styles.insert(_preparation.styles.end(), r.styles.begin(), r.styles.end());
+            _preparation.palettes += r.palettes;
+            _preparation.abstractTextures += r.abstractTextures;
+            _preparation.abstractFromCache += r.abstractFromCache;
+            _preparation.skipped += r.skipped;
+            _preparation.messages.insert(_preparation.messages.end(), r.messages.begin(), r.messages.end());
+            _preparation.milliseconds += r.milliseconds;
+        }
         _evaluator->bind(_scenario.get(), _index);
         osg::StateSet* ss = getOrCreateStateSet();
         ss->setDataVariance(osg::Object::DYNAMIC);

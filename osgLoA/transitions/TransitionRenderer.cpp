@@ -272,7 +272,11 @@ osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleS
     for (const char* v : kVertexShaders)
         p->addShader(ShaderLibrary::createShader(v).get());
     p->addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
-    if (!styleShader.empty()) p->addShader(ShaderLibrary::createShader(styleShader).get());
+    if (!styleShader.empty())
+    {
+        p->addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
+        p->addShader(ShaderLibrary::createShader(styleShader).get());
+    }
     if (std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos)
         p->addShader(ShaderLibrary::createShader("loa_abuffer_write.frag.glsl").get());
     // The pass's main with its define after the #version line.

@@ -45,6 +45,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_AbstractionStyle, new osgLoA::AbstractionStyle, o
     ADD_FLOAT_SERIALIZER(DogSigma, 1.0f);
     ADD_FLOAT_SERIALIZER(DogRatio, 1.6f);
     ADD_FLOAT_SERIALIZER(DogTau, 0.99f);
+    ADD_FLOAT_SERIALIZER(DogEpsilon, -1.0f);
     ADD_FLOAT_SERIALIZER(SobelThreshold, 0.2f);
     ADD_FLOAT_SERIALIZER(SobelThresholdFar, 0.5f);
     ADD_FLOAT_SERIALIZER(CannyLow, 0.1f);

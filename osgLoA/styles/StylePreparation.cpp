@@ -1,0 +1,156 @@
+/* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/filtering/FilterCache>
+#include <osgLoA/palette/PaletteMapping>
+#include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/StylePreparation>
+#include <osgLoA/styles/TextureAbstraction>
+#include <osgLoA/transitions/UsageScenario>
+
+#include <osg/Notify>
+#include <osg/ValueObject>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+namespace osgLoA
+{
+
+namespace
+{
+const char* const kKnown[] = {"abstract", "palette"};
+
+std::string join(const std::vector<std::string>& v)
+{
+    std::string s;
+    for (const std::string& x : v)
+        s += (s.empty() ? "" : ",") + x;
+    return s;
+}
+} // namespace
+
+std::vector<std::string> StylePreparation::stylesNeeded(const UsageScenario& scenario)
+{
+    // By the style's fragment shader, so that a user's style made from a built-in one (other
+    // parameters, another name) is prepared as the built-in is.
+    std::vector<std::string> out;
+    for (const char* style : kKnown)
+        for (const auto& c : scenario.getConfigurations())
+        {
+            if (!c.valid()) continue;
+            osg::ref_ptr<const GraphicStyle> p = GraphicStyleCatalog::instance().prototype(c->getStyle());
+            if (c->getStyle() == style ||
+                (p.valid() && p->getFragmentShader() == std::string("loa_style_") + style + ".frag.glsl"))
+            {
+                out.push_back(style);
+                break;
+            }
+        }
+    return out;
+}
+
+std::vector<std::string> StylePreparation::preparedStyles(const osg::Node& model)
+{
+    std::string value;
+    std::vector<std::string> out;
+    if (!model.getUserValue(kPreparedKey, value)) return out;
+    std::istringstream in(value);
+    for (std::string s; std::getline(in, s, ',');)
+        if (!s.empty()) out.push_back(s);
+    return out;
+}
+
+StylePreparation::Report StylePreparation::prepare(osg::Node& model, const UsageScenario& scenario)
+{
+    return prepare(model, scenario, Options());
+}
+
+StylePreparation::Report StylePreparation::prepare(osg::Node& model, const UsageScenario& scenario,
+                                                   const Options& options)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    Report report;
+    std::vector<std::string> done = preparedStyles(model);
+    bool changed = false;
+    auto say = [&](const std::string& line)
+    {
+        if (options.progress)
+            options.progress(line);
+        else
+            OSG_NOTICE << line << std::endl;
+    };
+    for (const std::string& style : stylesNeeded(scenario))
+    {
+        if (std::find(done.begin(), done.end(), style) != done.end()) continue;
+        if (style == "palette")
+        {
+            PaletteMapping::Options po;
+            std::vector<std::string> skipped;
+            po.skipped = &skipped;
+            say("osgLoA: palette style: building texture palettes (histograms, hierarchical clustering)");
+            report.palettes = PaletteMapping::attach(model, po);
+            report.skipped += unsigned(skipped.size());
+            report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
+            say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
+        }
+        else if (style == "abstract" && model.getStateSet() &&
+                 model.getStateSet()->getUniform(FilterConfiguration::kFilteredDiffuseFlag))
+        {
+            // The model carries a FilterConfiguration's filtered textures already (the user's
+            // own filters, or a model written after preparation): they are kept.
+            done.push_back(style);
+            changed = true;
+            continue;
+        }
+        else if (style == "abstract")
+        {
+            osg::ref_ptr<FilterCache> cache;
+            const std::string dir = options.cacheDir.empty() ? FilterCache::defaultDirectory() : options.cacheDir;
+            if (!dir.empty() && dir != "-") cache = new FilterCache(dir);
+            FilterConfiguration::Options fo;
+            fo.cache = cache.get();
+            fo.threads = options.threads;
+            fo.maxAnisotropy = options.maxAnisotropy;
+            unsigned fromCache = 0;
+            fo.fromCache = &fromCache;
+            const auto start = std::chrono::steady_clock::now();
+            int lastTenth = -1;
+            fo.progress = [&](unsigned n, unsigned total, const std::string& texture)
+            {
+                if (n == total)
+                {
+                    char b[160];
+                    std::snprintf(b, sizeof b, "%u/%u done in %.1f s", total, total,
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                    say(std::string("osgLoA: abstract style: filtering textures per mip level: ") + b +
+                        (cache.valid() ? " (cache " + cache->getDirectory() + ")" : " (no cache)"));
+                    return;
+                }
+                const int tenth = total ? int(10 * n / total) : 0;
+                if (tenth == lastTenth) return;
+                lastTenth = tenth;
+                say("osgLoA: abstract style: filtering textures per mip level: " + std::to_string(n) + "/" +
+                    std::to_string(total) + " (" + texture + ")");
+            };
+            const FilterConfiguration::Report r = TextureAbstraction::createConfiguration()->apply(model, fo);
+            report.abstractTextures = r.textures;
+            report.abstractFromCache = fromCache;
+            report.skipped += r.skipped;
+            for (const std::string& m : r.messages)
+            {
+                const std::string line = "abstract style: skipped " + m;
+                OSG_WARN << "osgLoA: " << line << std::endl;
+                report.messages.push_back(line);
+            }
+        }
+        report.styles.push_back(style);
+        done.push_back(style);
+        changed = true;
+    }
+    if (changed) model.setUserValue(kPreparedKey, join(done));
+    report.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return report;
+}
+
+} // namespace osgLoA
