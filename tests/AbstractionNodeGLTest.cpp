@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include <osg/AlphaFunc>
+#include <osg/BlendFunc>
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/MatrixTransform>
@@ -314,6 +316,55 @@ TEST(AbstractionNodeGLTest, SilhouettesSkipObjectsTilingOneSurface)
         EXPECT_GT(pixel(*out, 24, y).x(), 0.5f) << y;
         EXPECT_EQ(pixel(*out, 4, y), osg::Vec3f(0, 0, 0)) << y; // against the background: a line
         EXPECT_GT(pixel(*out, 14, y).x(), 0.5f) << y;
+    }
+}
+
+// An alpha-tested card (a tree billboard): a quad over x in [8, 40] whose texture is transparent
+// left of x = 24. The ID pass respects the alpha test, so the silhouette against the background
+// runs at x = 24, where the visible part starts, not around the whole quad (the "boxes around
+// tree cards" of real scenes); the same holds for a blended card (OSG's ac reader blends RGBA
+// textures instead of alpha-testing them).
+TEST(AbstractionNodeGLTest, SilhouettesFollowTheAlphaOfCards)
+{
+    osg::ref_ptr<osg::Image> img = new osg::Image;
+    img->allocateImage(W, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    for (int x = 0; x < W; ++x)
+    {
+        unsigned char* p = img->data(x, 0);
+        p[0] = 200, p[1] = 200, p[2] = 200, p[3] = x < 24 ? 0 : 255;
+    }
+    osg::ref_ptr<osg::Texture2D> tex = new osg::Texture2D(img.get());
+    tex->setFilter(osg::Texture::MIN_FILTER, osg::Texture::NEAREST);
+    tex->setFilter(osg::Texture::MAG_FILTER, osg::Texture::NEAREST);
+    for (const bool blended : {false, true})
+    {
+        osg::ref_ptr<osg::Geode> card = new osg::Geode;
+        osg::ref_ptr<osg::Geometry> g = quad(8, 8, 40, 40, -1, osg::Vec4(1, 1, 1, 1), osg::Vec3(0, 0, 1), true);
+        osg::StateSet* ss = g->getOrCreateStateSet();
+        ss->setTextureAttributeAndModes(0, tex.get());
+        if (blended)
+        {
+            ss->setAttributeAndModes(new osg::BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA));
+            ss->setRenderingHint(osg::StateSet::TRANSPARENT_BIN); // as OSG's readers set it
+        }
+        else
+            ss->setAttributeAndModes(new osg::AlphaFunc(osg::AlphaFunc::GREATER, 0.5f));
+        card->addDrawable(g.get());
+        // A white wall behind the card: where the card is transparent the wall shows, without a line.
+        card->addDrawable(quad(0, 0, W, H, -5, osg::Vec4(1, 1, 1, 1)).get());
+        card->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+        osg::ref_ptr<AbstractionStyle> style = AbstractionStyle::createBuiltin("sobel");
+        style->setEdgeDetector(AbstractionStyle::NO_EDGES);
+        style->setSilhouettes(true);
+        osg::ref_ptr<osg::Image> out = renderStyled(card.get(), style.get());
+        const std::string what = blended ? "blended card" : "alpha-tested card";
+        for (int y = 10; y < 38; ++y)
+        {
+            EXPECT_GT(pixel(*out, 8, y).x(), 0.9f) << what << ", y " << y; // the wall, no box edge
+            EXPECT_GT(pixel(*out, 16, y).x(), 0.9f) << what << ", y " << y;
+            EXPECT_EQ(pixel(*out, 24, y), osg::Vec3f(0, 0, 0)) << what << ", y " << y; // the silhouette
+            EXPECT_GT(pixel(*out, 30, y).x(), 0.5f) << what << ", y " << y;            // the card
+        }
     }
 }
 
