@@ -128,25 +128,17 @@ TEST_P(AbstractionRealSceneGLTest, MatchesGolden)
     const std::string name = "abstraction-street-1-" + style + "-480x270";
     osgDB::makeDirectory(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene");
     ImageFile::write(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene/" + name + ".png", *actual);
-    osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate(name + ".png", *actual);
-    if (!golden) GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
-    // The bars of AbstractionDemoCityGLTest: 16/255 per channel, mean 1/255, 1 % of the pixels.
-    const auto cmp = ImageComparison::compare(*actual, *golden, 16);
-    const bool ok = cmp.sizesMatch && cmp.meanDifference <= 1.0 && cmp.failingFraction <= 0.01;
-    if (!ok) loatest::saveFailure(name, *actual, cmp.difference.get());
-    EXPECT_TRUE(ok) << name << ": " << cmp.summary();
+    std::string summary;
+    bool skipped = false;
+    const bool ok = loatest::matchesAbstractionGolden(name, *actual, summary, skipped);
+    if (skipped) GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
+    EXPECT_TRUE(ok) << name << ": " << summary;
     osg::ref_ptr<osg::Image> plain = render(street1().get());
     EXPECT_GT(ImageComparison::compare(*actual, *plain, 16).failingFraction, 0.02) << style;
 }
 
 INSTANTIATE_TEST_SUITE_P(Styles, AbstractionRealSceneGLTest, ::testing::ValuesIn(AbstractionStyle::builtinNames()),
-                         [](const ::testing::TestParamInfo<std::string>& p)
-                         {
-                             std::string n = p.param;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& p) { return loatest::paramName(p.param); });
 
 // DoG on the rendered frame, close over textured grass: the default threshold (epsilon -1 L*)
 // darkens at most 0.5 % of the near ground; the paper's epsilon 0, which draws a line wherever

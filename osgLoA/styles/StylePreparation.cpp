@@ -8,6 +8,7 @@
 
 #include <osg/Notify>
 #include <osg/ValueObject>
+#include <osgDB/FileNameUtils>
 
 #include <algorithm>
 #include <chrono>
@@ -131,7 +132,7 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
                 if (tenth == lastTenth) return;
                 lastTenth = tenth;
                 say("osgLoA: abstract style: filtering textures per mip level: " + std::to_string(n) + "/" +
-                    std::to_string(total) + " (" + texture + ")");
+                    std::to_string(total) + " (" + osgDB::getSimpleFileName(texture) + ")");
             };
             const FilterConfiguration::Report r = TextureAbstraction::createConfiguration()->apply(model, fo);
             report.abstractTextures = r.textures;

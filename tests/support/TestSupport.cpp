@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include <osgLoA/util/ImageCompare>
 #include <osgLoA/util/ImageFile>
 
 #include <osg/Geometry>
@@ -79,6 +80,27 @@ osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Imag
         return nullptr;
     }
     return osgLoA::ImageFile::read(path);
+}
+
+std::string paramName(const std::string& param)
+{
+    std::string n = param;
+    for (char& c : n)
+        if (c == '-') c = '_';
+    return n;
+}
+
+bool matchesAbstractionGolden(const std::string& name, const osg::Image& actual, std::string& summary,
+                              bool& skipped)
+{
+    osg::ref_ptr<osg::Image> golden = goldenOrUpdate(name + ".png", actual);
+    skipped = !golden;
+    if (skipped) return false;
+    const auto cmp = osgLoA::ImageComparison::compare(actual, *golden, 16);
+    const bool ok = cmp.sizesMatch && cmp.meanDifference <= 1.0 && cmp.failingFraction <= 0.01;
+    if (!ok) saveFailure(name, actual, cmp.difference.get());
+    summary = cmp.summary();
+    return ok;
 }
 
 void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference)

@@ -37,6 +37,17 @@ std::string toOsgt(const osg::Node& node);
  *  there instead (scripts/update-goldens) and returns null. */
 osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Image& actual);
 
+/** A gtest parameter as a test name: '-' becomes '_' (style names such as "hybrid-toon"). */
+std::string paramName(const std::string& param);
+
+/** Compares an abstraction frame with the golden NAME.png at the bars of the abstraction goldens
+ *  (a channel may differ by 16/255, the mean by 1/255, 1 % of the pixels fail: llvmpipe builds
+ *  round filtering differently and the image stages turn a flipped edge pixel into a changed
+ *  Kuwahara sector or edge decision over a few pixels). Saves the failure; with
+ *  LOA_UPDATE_GOLDENS=1 writes the golden and returns false with `skipped` set. */
+bool matchesAbstractionGolden(const std::string& name, const osg::Image& actual, std::string& summary,
+                              bool& skipped);
+
 /** Writes NAME-actual.png and NAME-diff.png beside the build for a failed comparison. */
 void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference);
 
