@@ -212,17 +212,7 @@ void runABufferCase(int width, int height, const Viewport& vp, const std::string
 /** One graphic style for every feature: the LoA pipeline with nothing to blend. */
 osg::ref_ptr<UsageScenario> homogeneous(const std::string& style)
 {
-    osg::ref_ptr<UsageScenario> s = new UsageScenario;
-    s->setName("homogeneous-" + style);
-    osg::ref_ptr<TransitionConfiguration> c = new TransitionConfiguration;
-    c->setName(style);
-    c->setStyle(style);
-    c->setAllFeatureTypes();
-    c->setInterpolation(TransitionConfiguration::OBJECT);
-    c->setBlendFunction(BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
-    c->addMetric(new SaliencyMetric(SaliencyMetric::FEATURE_INTEREST, 0.0, 0.0));
-    s->addConfiguration(c.get());
-    return s;
+    return ScenarioLibrary::createHomogeneous(style);
 }
 
 struct TestScene

@@ -51,6 +51,7 @@ std::vector<Row> abstraction(unsigned frames, std::string& renderer)
     for (const auto& sz : sizes)
     {
         double regularMs = 0.0, regularChange = 0.0;
+        osg::ref_ptr<osg::Image> regularFrame;
         for (const std::string& style : styles)
         {
             osg::ref_ptr<osg::Node> scene = content;
@@ -91,13 +92,20 @@ std::vector<Row> abstraction(unsigned frames, std::string& renderer)
             {
                 regularMs = row.times.mean();
                 regularChange = change;
+                regularFrame = previous;
             }
+            // The last frame, checked against regular rendering of the same pose and kept.
+            const std::string problem = checkBlocks(*previous, *regularFrame);
+            row.frameFailed = !problem.empty();
+            if (sz[0] == 1280 || row.frameFailed)
+                keepFrame(*previous, "abstraction-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) + "-" + style);
             if (node && !node->getLastError().empty())
                 throw std::runtime_error("abstraction style '" + style + "': " + node->getLastError());
             std::ostringstream p;
             p << sz[0] << "x" << sz[1] << " style=" << style << std::fixed << std::setprecision(2)
               << " avg_fps=" << 1000.0 / row.times.mean()
-              << " ratio_to_regular=" << row.times.mean() / regularMs;
+              << " ratio_to_regular=" << row.times.mean() / regularMs
+              << " frame=" << (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
             if (node)
             {
                 const osgLoA::AbstractionNode::FrameStatistics st = node->getLastFrameStatistics();

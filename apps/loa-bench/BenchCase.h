@@ -25,6 +25,14 @@ struct Row
  *  0.2 % of the frame. Returns "" when the frame passes, else what is wrong. */
 std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clearColor);
 
+/** The check for frames whose colours a style changes on purpose (abstraction, filtering,
+ *  palettes): no 16x16 block entirely black where the reference (plain rendering of the same
+ *  view) has content, and not one colour over the whole frame. Returns "" when it passes. */
+std::string checkBlocks(const osg::Image& frame, const osg::Image& reference);
+
+/** Writes a benchmark's frame to out/bench-frames/NAME.png, to be looked at. */
+void keepFrame(const osg::Image& frame, const std::string& name);
+
 /** The demo city (default CityParameters), generated once per process. */
 osg::ref_ptr<osg::Node> demoCity();
 

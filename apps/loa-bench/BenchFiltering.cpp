@@ -95,6 +95,16 @@ std::vector<Row> filtering(unsigned frames, std::string& renderer)
     for (const auto& sz : sizes)
     {
         osg::ref_ptr<osg::Image> reference;
+        // Plain rendering at the fly-through's last pose: what each setup's last frame is
+        // checked against (no black blocks where it has content).
+        osg::ref_ptr<osg::Image> unfiltered;
+        {
+            auto plain = makeRenderer(sz[0], sz[1], 0, city.get(), "street");
+            const osgLoA::CameraPose p = flyThrough(*city, double(sz[0]) / sz[1], n - 1, n);
+            plain->setPerspective(p.fovy);
+            plain->setViewMatrixAsLookAt(p.eye, p.center, p.up);
+            unfiltered = plain->renderImage();
+        }
         for (const Setup& setup : setups)
         {
             osg::ref_ptr<osg::Group> node;
@@ -142,12 +152,19 @@ std::vector<Row> filtering(unsigned frames, std::string& renderer)
             }
             osg::ref_ptr<osg::Image> last = r->renderImage();
             if (setup.mode == 1) reference = last;
+            // The last frame of the fly-through, checked against the unfiltered one and kept.
+            const std::string problem = checkBlocks(*last, *unfiltered);
+            row.frameFailed = !problem.empty();
+            if (sz[0] == 1920 || row.frameFailed)
+                keepFrame(*last, "filtering-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) + "-" +
+                                     std::string(setup.name));
             const bool compared = setup.mode > 0;
             std::ostringstream p;
             p << sz[0] << "x" << sz[1] << " " << setup.name << " filter="
               << (setup.mode <= 0 ? std::string("none") : noCommas(filter->getParameterString()))
               << std::fixed << std::setprecision(2) << " avg_fps=" << 1000.0 / row.times.mean()
-              << " min_fps=" << 1000.0 / row.times.max() << " first_frame_ms=" << firstMs;
+              << " min_fps=" << 1000.0 / row.times.max() << " first_frame_ms=" << firstMs
+              << " frame=" << (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
             if (deferred)
                 p << " filtered_texels=" << filteredTexels
                   << " atlas_mib=" << double(deferred->getStatistics().atlasBytes) / (1024.0 * 1024.0)

@@ -157,7 +157,11 @@ std::vector<Row> palette(unsigned frames, std::string& renderer)
         renderer = r->getCapabilities().renderer;
         Row base;
         base.times = r->timeFrames(n);
-        base.parameters = "render style=plain 1280x720";
+        osg::ref_ptr<osg::Image> plainFrame = r->renderImage();
+        const std::string plainProblem = checkBlocks(*plainFrame, *plainFrame);
+        base.frameFailed = !plainProblem.empty();
+        base.parameters = "render style=plain 1280x720 frame=" +
+                          (plainProblem.empty() ? std::string("ok") : "FAILED(" + plainProblem + ")");
         base.errorMax = "1";
         rows.push_back(base);
         std::cerr << "  " << base.parameters << ": " << base.times.median() << " ms (palettes attached in "
@@ -168,8 +172,14 @@ std::vector<Row> palette(unsigned frames, std::string& renderer)
             auto rs = makeRenderer(1280, 720, 0, styled.get(), "oblique");
             Row row;
             row.times = rs->timeFrames(n);
+            // The timed frame, checked against the plain program's and kept to look at.
+            osg::ref_ptr<osg::Image> frame = rs->renderImage();
+            const std::string problem = checkFrame(*frame, *plainFrame, rs->getCamera()->getClearColor());
+            row.frameFailed = !problem.empty();
+            keepFrame(*frame, "palette-1280x720-level" + std::to_string(k));
             row.parameters = "render style=palette 1280x720 level=" + std::to_string(k) +
-                             " attach_ms=" + number(attachMs, 5);
+                             " attach_ms=" + number(attachMs, 5) +
+                             " frame=" + (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
             row.errorMax = number(row.times.median() / base.times.median());
             rows.push_back(row);
             std::cerr << "  " << row.parameters << ": " << row.times.median() << " ms\n";

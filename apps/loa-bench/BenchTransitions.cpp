@@ -14,60 +14,6 @@
 #include <iostream>
 #include <sstream>
 
-namespace
-{
-/** One graphic style for every feature: the LoA pipeline with nothing to blend. */
-osg::ref_ptr<osgLoA::UsageScenario> homogeneous(const std::string& style)
-{
-    osg::ref_ptr<osgLoA::UsageScenario> s = new osgLoA::UsageScenario;
-    s->setName("homogeneous-" + style);
-    osg::ref_ptr<osgLoA::TransitionConfiguration> c = new osgLoA::TransitionConfiguration;
-    c->setName(style);
-    c->setStyle(style);
-    c->setFeatureTypes(osgLoA::TransitionConfiguration::FeatureTypes(std::begin(osgLoA::kFeatureTypes),
-                                                                     std::end(osgLoA::kFeatureTypes)));
-    c->setInterpolation(osgLoA::TransitionConfiguration::OBJECT);
-    c->setBlendFunction(osgLoA::BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
-    c->addMetric(new osgLoA::SaliencyMetric(osgLoA::SaliencyMetric::FEATURE_INTEREST, 0.0, 0.0));
-    s->addConfiguration(c.get());
-    return s;
-}
-
-/** Writes a benchmark's frame to out/bench-frames/NAME.png, to be looked at. */
-void keepFrame(const osg::Image& frame, const std::string& name)
-{
-    osgDB::makeDirectory("out/bench-frames");
-    osgLoA::ImageFile::write("out/bench-frames/" + name + ".png", frame);
-}
-
-} // namespace
-
-std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clear)
-{
-    if (frame.s() != reference.s() || frame.t() != reference.t()) return "size differs from the reference";
-    const int cr = int(std::lround(clear.r() * 255.0f)), cg = int(std::lround(clear.g() * 255.0f)),
-              cb = int(std::lround(clear.b() * 255.0f));
-    auto isClear = [&](const unsigned char* p)
-    { return std::abs(p[0] - cr) <= 1 && std::abs(p[1] - cg) <= 1 && std::abs(p[2] - cb) <= 1; };
-    auto isBlack = [](const unsigned char* p) { return p[0] < 4 && p[1] < 4 && p[2] < 4; };
-    long long covered[2] = {0, 0}, black[2] = {0, 0};
-    const osg::Image* images[2] = {&frame, &reference};
-    for (int i = 0; i < 2; ++i)
-        for (int y = 0; y < frame.t(); ++y)
-            for (int x = 0; x < frame.s(); ++x)
-            {
-                const unsigned char* p = images[i]->data(x, y);
-                covered[i] += isClear(p) ? 0 : 1;
-                black[i] += isBlack(p) ? 1 : 0;
-            }
-    const double bar = 0.002 * double(frame.s()) * frame.t();
-    std::ostringstream why;
-    if (double(std::llabs(covered[0] - covered[1])) > bar)
-        why << "covered " << covered[0] << " px against plain rendering's " << covered[1];
-    if (double(black[0] - black[1]) > bar)
-        why << (why.str().empty() ? "" : "; ") << black[0] << " black px against " << black[1];
-    return why.str();
-}
 
 std::vector<Row> transitions(unsigned frames, std::string& renderer)
 {
@@ -79,7 +25,7 @@ std::vector<Row> transitions(unsigned frames, std::string& renderer)
     typedef std::pair<std::string, osg::ref_ptr<osgLoA::UsageScenario>> Named;
     std::vector<Named> scenarios;
     for (const char* style : {"photorealistic", "cartographic"})
-        scenarios.emplace_back(std::string("homogeneous-") + style, homogeneous(style));
+        scenarios.emplace_back(std::string("homogeneous-") + style, osgLoA::ScenarioLibrary::createHomogeneous(style));
     for (const std::string& name : osgLoA::ScenarioLibrary::builtinNames())
         scenarios.emplace_back(name, osgLoA::ScenarioLibrary::createBuiltin(name));
     // From the street the view distance runs through all three levels of "distance" (from the

@@ -2,6 +2,7 @@
 #include "../common/AppSupport.h"
 #include "BenchCase.h"
 
+#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/Version>
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
@@ -111,6 +112,8 @@ std::vector<Row> plainRender(unsigned frames, std::string& renderer)
     osg::ref_ptr<osg::Group> shaded = withPlainProgram(city.get());
     const int sizes[3][2] = {{800, 600}, {1280, 720}, {1920, 1080}};
     for (const auto& sz : sizes)
+    {
+        osg::ref_ptr<osg::Image> fixedFrame;
         for (int pipeline = 0; pipeline < 2; ++pipeline)
         {
             auto r =
@@ -120,9 +123,19 @@ std::vector<Row> plainRender(unsigned frames, std::string& renderer)
             row.parameters = std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
                              (pipeline ? " pipeline=loa_plain" : " pipeline=fixed");
             row.times = r->timeFrames(frames);
+            // The timed frame, checked: the loa_plain program covers what the fixed function does.
+            osg::ref_ptr<osg::Image> frame = r->renderImage();
+            const std::string problem = pipeline ? checkFrame(*frame, *fixedFrame, r->getCamera()->getClearColor())
+                                                 : checkBlocks(*frame, *frame);
+            if (!pipeline) fixedFrame = frame;
+            row.parameters += " frame=" + (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
+            row.frameFailed = !problem.empty();
+            if (sz[0] == 1920 || row.frameFailed) keepFrame(*frame, "plain-render-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
+                                      (pipeline ? "-loa_plain" : "-fixed"));
             rows.push_back(row);
             std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms\n";
         }
+    }
     return rows;
 }
 
@@ -159,7 +172,12 @@ std::vector<Row> msaa(unsigned frames, std::string& renderer)
         Row row;
         row.parameters = "1280x720 samples=" + std::to_string(samples);
         row.times = r->timeFrames(frames);
-        const auto cmp = osgLoA::ImageComparison::compare(*r->renderImage(), *reference, 8);
+        osg::ref_ptr<osg::Image> frame = r->renderImage();
+        const std::string problem = checkFrame(*frame, *reference, r->getCamera()->getClearColor());
+        row.parameters += " frame=" + (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
+        row.frameFailed = !problem.empty();
+        keepFrame(*frame, "msaa-1280x720-samples" + std::to_string(samples));
+        const auto cmp = osgLoA::ImageComparison::compare(*frame, *reference, 8);
         std::ostringstream m, x;
         m << std::setprecision(4) << cmp.meanDifference;
         x << cmp.maxDifference;
@@ -378,6 +396,10 @@ osg::ref_ptr<osg::Group> withPlainProgram(osg::Node* scene)
     g->getOrCreateStateSet()->setAttributeAndModes(
         osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"}).get());
     g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_baseTexture", 0));
+    // Which drawables have a texture: without it loa_plain samples unit 0 everywhere, and the
+    // untextured trees came out black (the frame check of plain-render found them).
+    osgLoA::FixedFunctionUniforms::annotate(*scene);
+    osgLoA::FixedFunctionUniforms::setDefaults(*g->getOrCreateStateSet());
     return g;
 }
 

@@ -9,6 +9,7 @@
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -310,11 +311,18 @@ int run(const Options& o)
 
     if (o.program == "plain")
     {
+        // Which StateSets have a texture (and OSG's defaults above them): loa_plain must not
+        // sample unit 0 on untextured drawables (they came out black).
+        osgLoA::FixedFunctionUniforms::annotate(*scene);
+        osg::ref_ptr<osg::Group> root = new osg::Group;
+        root->addChild(scene.get());
+        scene = root;
         osg::StateSet* ss = scene->getOrCreateStateSet();
         ss->setAttributeAndModes(
             osgLoA::ShaderLibrary::createProgram("plain", {"loa_plain.vert.glsl", "loa_plain.frag.glsl"})
                 .get());
         ss->addUniform(new osg::Uniform("loa_baseTexture", 0));
+        osgLoA::FixedFunctionUniforms::setDefaults(*ss);
     }
     osg::ref_ptr<osgLoA::LoANode> loaNode;
     osg::ref_ptr<osgLoA::AbstractionNode> abstractionNode;
@@ -326,16 +334,8 @@ int run(const Options& o)
         if (styleScenario)
         {
             // One configuration: every feature in the style.
-            scenario = new osgLoA::UsageScenario;
+            scenario = osgLoA::ScenarioLibrary::createHomogeneous(o.style);
             scenario->setName("style-" + o.style);
-            osg::ref_ptr<osgLoA::TransitionConfiguration> c = new osgLoA::TransitionConfiguration;
-            c->setName(o.style);
-            c->setAllFeatureTypes();
-            c->setStyle(o.style);
-            // Any metric will do: the default blend function weighs every interest 1.
-            c->setInterpolation(osgLoA::TransitionConfiguration::OBJECT);
-            c->addMetric(new osgLoA::SaliencyMetric(osgLoA::SaliencyMetric::FEATURE_INTEREST, 0.0, 1.0));
-            scenario->addConfiguration(c.get());
         }
         else
             try

@@ -133,6 +133,21 @@ std::vector<std::string> ScenarioLibrary::builtinNames()
     return {"manual", "distance", "view-angle", "route", "circular-roi", "blueprint"};
 }
 
+osg::ref_ptr<UsageScenario> ScenarioLibrary::createHomogeneous(const std::string& style)
+{
+    osg::ref_ptr<UsageScenario> s = new UsageScenario;
+    s->setName("homogeneous-" + style);
+    osg::ref_ptr<TransitionConfiguration> c = new TransitionConfiguration;
+    c->setName(style);
+    c->setStyle(style);
+    c->setAllFeatureTypes();
+    c->setInterpolation(TransitionConfiguration::OBJECT);
+    c->setBlendFunction(BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
+    c->addMetric(new SaliencyMetric(SaliencyMetric::FEATURE_INTEREST, 0.0, 0.0));
+    s->addConfiguration(c.get());
+    return s;
+}
+
 osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& name)
 {
     typedef SaliencyMetric M;

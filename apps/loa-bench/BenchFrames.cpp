@@ -1,0 +1,78 @@
+// loa-bench: the checks of the frames a case times ("a benchmark row whose frame is wrong is a
+// bug, not a number") and the frames kept to look at.
+#include "BenchCase.h"
+
+#include <osgLoA/util/ImageFile>
+
+#include <osgDB/FileUtils>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+void keepFrame(const osg::Image& frame, const std::string& name)
+{
+    osgDB::makeDirectory("out/bench-frames");
+    osgLoA::ImageFile::write("out/bench-frames/" + name + ".png", frame);
+}
+
+std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clear)
+{
+    if (frame.s() != reference.s() || frame.t() != reference.t()) return "size differs from the reference";
+    const int cr = int(std::lround(clear.r() * 255.0f)), cg = int(std::lround(clear.g() * 255.0f)),
+              cb = int(std::lround(clear.b() * 255.0f));
+    auto isClear = [&](const unsigned char* p)
+    { return std::abs(p[0] - cr) <= 1 && std::abs(p[1] - cg) <= 1 && std::abs(p[2] - cb) <= 1; };
+    auto isBlack = [](const unsigned char* p) { return p[0] < 4 && p[1] < 4 && p[2] < 4; };
+    long long covered[2] = {0, 0}, black[2] = {0, 0};
+    const osg::Image* images[2] = {&frame, &reference};
+    for (int i = 0; i < 2; ++i)
+        for (int y = 0; y < frame.t(); ++y)
+            for (int x = 0; x < frame.s(); ++x)
+            {
+                const unsigned char* p = images[i]->data(x, y);
+                covered[i] += isClear(p) ? 0 : 1;
+                black[i] += isBlack(p) ? 1 : 0;
+            }
+    const double bar = 0.002 * double(frame.s()) * frame.t();
+    std::ostringstream why;
+    if (double(std::llabs(covered[0] - covered[1])) > bar)
+        why << "covered " << covered[0] << " px against plain rendering's " << covered[1];
+    if (double(black[0] - black[1]) > bar)
+        why << (why.str().empty() ? "" : "; ") << black[0] << " black px against " << black[1];
+    return why.str();
+}
+
+std::string checkBlocks(const osg::Image& frame, const osg::Image& reference)
+{
+    if (frame.s() != reference.s() || frame.t() != reference.t()) return "size differs from the reference";
+    auto isBlack = [](const unsigned char* p) { return p[0] < 4 && p[1] < 4 && p[2] < 4; };
+    const int tile = 16;
+    int blackTiles = 0;
+    for (int ty = 0; ty + tile <= frame.t(); ty += tile)
+        for (int tx = 0; tx + tile <= frame.s(); tx += tile)
+        {
+            bool frameBlack = true, referenceBlack = true;
+            for (int y = ty; y < ty + tile && (frameBlack || referenceBlack); ++y)
+                for (int x = tx; x < tx + tile; ++x)
+                {
+                    frameBlack = frameBlack && isBlack(frame.data(x, y));
+                    referenceBlack = referenceBlack && isBlack(reference.data(x, y));
+                }
+            if (frameBlack && !referenceBlack) ++blackTiles;
+        }
+    const unsigned char* first = frame.data(0, 0);
+    bool uniform = true;
+    for (int y = 0; y < frame.t() && uniform; ++y)
+        for (int x = 0; x < frame.s() && uniform; ++x)
+        {
+            const unsigned char* p = frame.data(x, y);
+            uniform = std::abs(p[0] - first[0]) <= 2 && std::abs(p[1] - first[1]) <= 2 && std::abs(p[2] - first[2]) <= 2;
+        }
+    std::ostringstream why;
+    if (uniform) why << "the frame is one colour";
+    if (blackTiles > 0)
+        why << (why.str().empty() ? "" : "; ") << blackTiles << " black " << tile << "x" << tile
+            << " block(s) where the reference has content";
+    return why.str();
+}
