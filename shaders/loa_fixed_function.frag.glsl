@@ -44,16 +44,21 @@ vec4 loa_fixedFunctionLighting(vec3 viewPosition, vec3 normal, vec4 color)
 
 // The fixed-function texture environment of unit 0 (GL 1.5 table 3.22; BLEND uses the
 // environment colour's default, black, so it is MODULATE's complement).
-vec4 loa_fixedFunctionTexEnv(vec4 fragment, vec4 texel)
+vec4 loa_fixedFunctionTexEnvMode(int mode, vec4 fragment, vec4 texel)
 {
-    if (loa_texEnvMode == 1)
+    if (mode == 1)
         return texel;
-    if (loa_texEnvMode == 2)
+    if (mode == 2)
         return vec4(mix(fragment.rgb, texel.rgb, texel.a), fragment.a);
-    if (loa_texEnvMode == 3)
+    if (mode == 3)
         return vec4(min(fragment.rgb + texel.rgb, vec3(1.0)), fragment.a * texel.a);
-    if (loa_texEnvMode == 4)
+    if (mode == 4)
         return vec4(fragment.rgb * (1.0 - texel.rgb), fragment.a * texel.a);
     return fragment * texel;
+}
+
+vec4 loa_fixedFunctionTexEnv(vec4 fragment, vec4 texel)
+{
+    return loa_fixedFunctionTexEnvMode(loa_texEnvMode, fragment, texel);
 }
 

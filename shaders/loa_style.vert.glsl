@@ -13,6 +13,8 @@ out vec3 loa_scenePosition; // before deformation: where the interest is measure
 out vec3 loa_viewPosition;
 out vec3 loa_viewNormal;
 out vec2 loa_texCoord;
+out vec2 loa_texCoord1; // texture units 1 and 2 (osgLoA::FixedFunctionUniforms::kUnits)
+out vec2 loa_texCoord2;
 out vec4 loa_color;
 void main()
 {
@@ -26,6 +28,10 @@ void main()
     // The texture matrix (osg::TexMat) and the projective divide, as fixed-function texturing.
     vec4 tc = gl_TextureMatrix[0] * gl_MultiTexCoord0;
     loa_texCoord = tc.xy / (tc.w != 0.0 ? tc.w : 1.0);
+    vec4 tc1 = gl_TextureMatrix[1] * gl_MultiTexCoord1;
+    loa_texCoord1 = tc1.xy / (tc1.w != 0.0 ? tc1.w : 1.0);
+    vec4 tc2 = gl_TextureMatrix[2] * gl_MultiTexCoord2;
+    loa_texCoord2 = tc2.xy / (tc2.w != 0.0 ? tc2.w : 1.0);
     loa_color = gl_Color;
     gl_Position = gl_ProjectionMatrix * deformed;
 }

@@ -23,6 +23,18 @@ uniform bool loa_photorealistic_fixedFunction = true;
 // (loa_fixed_function.frag.glsl, linked into every style's program).
 vec4 loa_fixedFunctionLighting(vec3 viewPosition, vec3 normal, vec4 color);
 vec4 loa_fixedFunctionTexEnv(vec4 fragment, vec4 texel);
+vec4 loa_fixedFunctionTexEnvMode(int mode, vec4 fragment, vec4 texel);
+
+// Texture units 1 and 2 (a lightmap, a detail texture), applied after unit 0 as the fixed
+// function's texture stages are (osgLoA::FixedFunctionUniforms::kUnits).
+uniform sampler2D loa_texture1;
+uniform sampler2D loa_texture2;
+uniform bool loa_hasTexture1 = false;
+uniform bool loa_hasTexture2 = false;
+uniform int loa_texEnvMode1 = 0;
+uniform int loa_texEnvMode2 = 0;
+in vec2 loa_texCoord1;
+in vec2 loa_texCoord2;
 
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
@@ -30,8 +42,14 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
     {
         // The normal as the model gives it: the pass turned it towards the viewer.
         vec3 modelNormal = gl_FrontFacing ? viewNormal : -viewNormal;
-        vec4 lit = loa_fixedFunctionLighting(viewPosition, modelNormal, color);
-        return loa_hasTexture ? loa_fixedFunctionTexEnv(lit, texture(loa_baseTexture, texCoord)) : lit;
+        vec4 c = loa_fixedFunctionLighting(viewPosition, modelNormal, color);
+        if (loa_hasTexture)
+            c = loa_fixedFunctionTexEnv(c, texture(loa_baseTexture, texCoord));
+        if (loa_hasTexture1)
+            c = loa_fixedFunctionTexEnvMode(loa_texEnvMode1, c, texture(loa_texture1, loa_texCoord1));
+        if (loa_hasTexture2)
+            c = loa_fixedFunctionTexEnvMode(loa_texEnvMode2, c, texture(loa_texture2, loa_texCoord2));
+        return c;
     }
     vec4 base = loa_photorealistic_materialDiffuse ? gl_FrontMaterial.diffuse : color;
     if (loa_hasTexture)

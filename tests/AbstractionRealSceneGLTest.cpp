@@ -43,7 +43,8 @@ osg::ref_ptr<osg::Node> street1()
     {
         tried = true;
         const std::string path = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/torcs-street-1.osgt";
-        const std::string texture = std::string(LOA_SOURCE_DIR) + "/data/cache/torcs-data/street-1/grass-aa.rgb";
+        const std::string texture =
+            std::string(LOA_SOURCE_DIR) + "/data/cache/torcs-data/street-1/grass-aa.rgb";
         if (osgDB::fileExists(path) && osgDB::fileExists(texture)) model = osgDB::readRefNodeFile(path);
     }
     return model;
@@ -137,8 +138,10 @@ TEST_P(AbstractionRealSceneGLTest, MatchesGolden)
     EXPECT_GT(ImageComparison::compare(*actual, *plain, 16).failingFraction, 0.02) << style;
 }
 
-INSTANTIATE_TEST_SUITE_P(Styles, AbstractionRealSceneGLTest, ::testing::ValuesIn(AbstractionStyle::builtinNames()),
-                         [](const ::testing::TestParamInfo<std::string>& p) { return loatest::paramName(p.param); });
+INSTANTIATE_TEST_SUITE_P(Styles, AbstractionRealSceneGLTest,
+                         ::testing::ValuesIn(AbstractionStyle::builtinNames()),
+                         [](const ::testing::TestParamInfo<std::string>& p)
+                         { return loatest::paramName(p.param); });
 
 // DoG on the rendered frame, close over textured grass: the default threshold (epsilon -1 L*)
 // darkens at most 0.5 % of the near ground; the paper's epsilon 0, which draws a line wherever
@@ -201,7 +204,8 @@ TEST(AbstractionRealSceneGLTest, SilhouettesDoNotOutlineTerrainPieces)
     osg::ref_ptr<osg::Image> withImage = styled(toon.get());
     // The paper's rule: a silhouette wherever the object id changes.
     std::string text = ShaderLibrary::getSource("loa_abstraction_compose.frag.glsl").text;
-    const std::string rule = "    return 1.0 - dot(a.xyz, b.xyz) > 0.05 || abs(a.w - b.w) > 0.02 * max(a.w, b.w);";
+    const std::string rule =
+        "    return 1.0 - dot(a.xyz, b.xyz) > 0.05 || abs(a.w - b.w) > 0.02 * max(a.w, b.w);";
     const std::size_t at = text.find(rule);
     ASSERT_NE(at, std::string::npos) << "the silhouette rule changed: update this test";
     text.replace(at, rule.size(), "    return true;");
@@ -213,8 +217,10 @@ TEST(AbstractionRealSceneGLTest, SilhouettesDoNotOutlineTerrainPieces)
     toon->setSilhouettes(false);
     osg::ref_ptr<osg::Image> withoutImage = styled(toon.get());
     osgDB::makeDirectory(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene");
-    ImageFile::write(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene/hybrid-toon-silhouettes.png", *withImage);
-    ImageFile::write(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene/hybrid-toon-silhouettes-every-object.png",
+    ImageFile::write(std::string(LOA_TEST_OUTPUT_DIR) + "/real-scene/hybrid-toon-silhouettes.png",
+                     *withImage);
+    ImageFile::write(std::string(LOA_TEST_OUTPUT_DIR) +
+                         "/real-scene/hybrid-toon-silhouettes-every-object.png",
                      *paperImage);
     const double with = linePixels(*withImage), paper = linePixels(*paperImage),
                  without = linePixels(*withoutImage);

@@ -35,12 +35,16 @@ out vec3 test_viewPosition;
 out vec3 test_viewNormal;
 out vec2 test_texCoord;
 out vec4 test_color;
+out vec2 loa_texCoord1; // what loa_style.vert.glsl gives the photorealistic style (units 1, 2)
+out vec2 loa_texCoord2;
 void main()
 {
     test_scenePosition = gl_Vertex.xyz;
     test_viewPosition = (osg_ModelViewMatrix * gl_Vertex).xyz;
     test_viewNormal = osg_NormalMatrix * gl_Normal;
     test_texCoord = gl_MultiTexCoord0.xy;
+    loa_texCoord1 = gl_MultiTexCoord1.xy;
+    loa_texCoord2 = gl_MultiTexCoord2.xy;
     test_color = gl_Color;
     gl_Position = osg_ModelViewProjectionMatrix * gl_Vertex;
 }

@@ -67,7 +67,8 @@ std::string checkBlocks(const osg::Image& frame, const osg::Image& reference)
         for (int x = 0; x < frame.s() && uniform; ++x)
         {
             const unsigned char* p = frame.data(x, y);
-            uniform = std::abs(p[0] - first[0]) <= 2 && std::abs(p[1] - first[1]) <= 2 && std::abs(p[2] - first[2]) <= 2;
+            uniform = std::abs(p[0] - first[0]) <= 2 && std::abs(p[1] - first[1]) <= 2 &&
+                      std::abs(p[2] - first[2]) <= 2;
         }
     std::ostringstream why;
     if (uniform) why << "the frame is one colour";

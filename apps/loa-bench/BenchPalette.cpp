@@ -16,6 +16,7 @@
 // error_mean: the weighted mean Delta E; error_max: for clustering rows, the number of colours.
 #include "BenchCase.h"
 
+#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/palette/KMeansPalette>
 #include <osgLoA/palette/PaletteHierarchy>
 #include <osgLoA/palette/PaletteMapping>
@@ -152,6 +153,9 @@ std::vector<Row> palette(unsigned frames, std::string& renderer)
         osg::ref_ptr<osg::Uniform> level = new osg::Uniform("loa_palette_level", 8);
         ss->addUniform(level.get());
         ss->addUniform(new osg::Uniform("loa_palette_strategy", 0));
+        // Which drawables have a texture (the frame check found the untextured trees black).
+        osgLoA::FixedFunctionUniforms::annotate(*city);
+        osgLoA::FixedFunctionUniforms::setDefaults(*ss);
         const unsigned n = std::max(3u, frames);
         auto r = makeRenderer(1280, 720, 0, plain.get(), "oblique");
         renderer = r->getCapabilities().renderer;

@@ -78,8 +78,9 @@ options:
   --version, --help
 
 Progress goes to stderr: a bar (textures done/total, ETA) when stderr is a terminal, one line
-per texture otherwise. Unusable images (missing or corrupt files, 0x0 images, pixel formats other
-than 8-bit RGB/RGBA/BGR/BGRA, tables above --max-colors, no texel of non-zero weight) are
+per texture otherwise. Luminance, luminance-alpha, 16-bit, float and S3TC (DXT) images are
+converted to 8-bit RGB(A) first. Unusable images (missing or corrupt files, 0x0 images, other
+compressed or packed formats, tables above --max-colors, no texel of non-zero weight) are
 reported by name and skipped.
 
 exit status: 0 every texture done, 1 the model could not be read, it has no textured geometry,

@@ -62,8 +62,8 @@ options:
 
 Progress goes to stderr: a bar (images done/total, rate, ETA) when stderr is a terminal, one
 line per image otherwise. Unreadable images (corrupt or missing files, 0x0 images, sizes above
---max-size, formats a filter cannot read: compressed, packed, 3D) are reported by name and
-skipped. The last line counts the images filtered, found in the cache and skipped.
+--max-size, formats a filter cannot read: compressed other than S3TC/DXT, packed, 3D) are
+reported by name and skipped. The last line counts the images filtered, found in the cache and skipped.
 
 exit status: 0 every image filtered or cached, 1 the model could not be read, the cache could
 not be written or the export failed, 2 bad arguments, 3 no usable EGL/OpenGL context (--gpu),

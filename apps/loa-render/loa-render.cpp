@@ -51,7 +51,13 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
   --scenario NAME|FILE  draw with LoA transitions: wrap the scene in a LoA node carrying the
                         usage scenario NAME of the library (loa-scenario list) or FILE
                         (.osgt/.osgb/.osgx); the features are drawn in their configurations'
-                        graphic styles and composed by the stencil-routed A-buffer
+                        graphic styles and composed by the stencil-routed A-buffer. The
+                        model's own features keep their types; the rest are classified by
+                        the default rules, as the loa plugin does. Styles that need
+                        per-texture data are prepared first, once per model (abstract:
+                        textures filtered per mip level into the filter cache,
+                        $OSGLOA_FILTER_CACHE or ~/.cache/osgLoA/filters; palette: palettes),
+                        with progress lines on stderr
   --style NAME|FILE     draw in one graphic style: a style of --list-styles, or an
                         abstraction style file (.osgt/.osgb/.osgx holding an
                         osgLoA::AbstractionStyle). Image-space and hybrid styles (papers 001,

@@ -7,6 +7,8 @@
 #include <osg/Material>
 #include <osg/TexEnv>
 
+#include <string>
+
 namespace osgLoA
 {
 
@@ -65,19 +67,32 @@ int texEnvMode(const osg::TexEnv& e)
 bool FixedFunctionUniforms::annotate(osg::StateSet& ss)
 {
     bool any = false;
-    // Texture on unit 0: the attribute, or the GL_TEXTURE_2D mode alone.
-    const osg::StateSet::RefAttributePair* tex = ss.getTextureAttributePair(0, osg::StateAttribute::TEXTURE);
-    const osg::StateAttribute::GLModeValue texMode = ss.getTextureMode(0, GL_TEXTURE_2D);
-    if (tex && tex->first.valid())
+    for (unsigned unit = 0; unit < kUnits; ++unit)
     {
-        const bool off = (texMode != osg::StateAttribute::INHERIT) && !(texMode & osg::StateAttribute::ON);
-        put(ss, "loa_hasTexture", !off, flagsOf(tex->second | texMode));
-        any = true;
-    }
-    else if (texMode != osg::StateAttribute::INHERIT)
-    {
-        put(ss, "loa_hasTexture", (texMode & osg::StateAttribute::ON) != 0, flagsOf(texMode));
-        any = true;
+        const std::string suffix = unit ? std::to_string(unit) : std::string();
+        const std::string has = "loa_hasTexture" + suffix, env = "loa_texEnvMode" + suffix;
+        // A texture on the unit: the attribute, or the GL_TEXTURE_2D mode alone.
+        const osg::StateSet::RefAttributePair* tex = ss.getTextureAttributePair(unit, osg::StateAttribute::TEXTURE);
+        const osg::StateAttribute::GLModeValue texMode = ss.getTextureMode(unit, GL_TEXTURE_2D);
+        if (tex && tex->first.valid())
+        {
+            const bool off = (texMode != osg::StateAttribute::INHERIT) && !(texMode & osg::StateAttribute::ON);
+            put(ss, has.c_str(), !off, flagsOf(tex->second | texMode));
+            any = true;
+        }
+        else if (texMode != osg::StateAttribute::INHERIT)
+        {
+            put(ss, has.c_str(), (texMode & osg::StateAttribute::ON) != 0, flagsOf(texMode));
+            any = true;
+        }
+        if (const osg::StateSet::RefAttributePair* ep = ss.getTextureAttributePair(unit, osg::StateAttribute::TEXENV))
+        {
+            if (const auto* e = dynamic_cast<const osg::TexEnv*>(ep->first.get()))
+            {
+                put(ss, env.c_str(), texEnvMode(*e), flagsOf(ep->second));
+                any = true;
+            }
+        }
     }
     const osg::StateAttribute::GLModeValue lighting = ss.getMode(GL_LIGHTING);
     if (lighting != osg::StateAttribute::INHERIT)
@@ -90,15 +105,6 @@ bool FixedFunctionUniforms::annotate(osg::StateSet& ss)
         if (const auto* m = dynamic_cast<const osg::Material*>(mp->first.get()))
         {
             put(ss, "loa_colorMaterial", colorMaterialMode(*m), flagsOf(mp->second));
-            any = true;
-        }
-    }
-    if (const osg::StateSet::RefAttributePair* ep =
-            ss.getTextureAttributePair(0, osg::StateAttribute::TEXENV))
-    {
-        if (const auto* e = dynamic_cast<const osg::TexEnv*>(ep->first.get()))
-        {
-            put(ss, "loa_texEnvMode", texEnvMode(*e), flagsOf(ep->second));
             any = true;
         }
     }
@@ -135,6 +141,12 @@ void FixedFunctionUniforms::annotate(osg::Node& scene)
 void FixedFunctionUniforms::setDefaults(osg::StateSet& ss)
 {
     ss.addUniform(new osg::Uniform("loa_hasTexture", false));
+    for (unsigned unit = 1; unit < kUnits; ++unit)
+    {
+        ss.addUniform(new osg::Uniform(("loa_hasTexture" + std::to_string(unit)).c_str(), false));
+        ss.addUniform(new osg::Uniform(("loa_texEnvMode" + std::to_string(unit)).c_str(), 0));
+        ss.addUniform(new osg::Uniform(("loa_texture" + std::to_string(unit)).c_str(), int(unit)));
+    }
     ss.addUniform(new osg::Uniform("loa_lighting", true));
     ss.addUniform(new osg::Uniform("loa_colorMaterial", 1));
     ss.addUniform(new osg::Uniform("loa_texEnvMode", 0));

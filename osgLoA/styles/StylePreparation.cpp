@@ -107,7 +107,8 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
         else if (style == "abstract")
         {
             osg::ref_ptr<FilterCache> cache;
-            const std::string dir = options.cacheDir.empty() ? FilterCache::defaultDirectory() : options.cacheDir;
+            const std::string dir =
+                options.cacheDir.empty() ? FilterCache::defaultDirectory() : options.cacheDir;
             if (!dir.empty() && dir != "-") cache = new FilterCache(dir);
             FilterConfiguration::Options fo;
             fo.cache = cache.get();
@@ -122,8 +123,9 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
                 if (n == total)
                 {
                     char b[160];
-                    std::snprintf(b, sizeof b, "%u/%u done in %.1f s", total, total,
-                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                    std::snprintf(
+                        b, sizeof b, "%u/%u done in %.1f s", total, total,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
                     say(std::string("osgLoA: abstract style: filtering textures per mip level: ") + b +
                         (cache.valid() ? " (cache " + cache->getDirectory() + ")" : " (no cache)"));
                     return;
@@ -150,7 +152,8 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
         changed = true;
     }
     if (changed) model.setUserValue(kPreparedKey, join(done));
-    report.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return report;
 }
 

@@ -58,7 +58,8 @@ osg::ref_ptr<FilterConfiguration> TextureAbstraction::createConfiguration()
                           FilterConfiguration::kFilteredDiffuseFlag);
     colour->setDefaultFilter(createColorFilter().get());
     c->addChannel(colour.get());
-    osg::ref_ptr<FilterChannel> outline = new FilterChannel("outline", 0, kOutlineUnit, kOutlineSampler, kOutlineFlag);
+    osg::ref_ptr<FilterChannel> outline =
+        new FilterChannel("outline", 0, kOutlineUnit, kOutlineSampler, kOutlineFlag);
     outline->setDefaultFilter(createOutlineFilter().get());
     c->addChannel(outline.get());
     return c;

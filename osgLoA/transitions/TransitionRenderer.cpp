@@ -215,6 +215,8 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
     _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
     uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
+    uniform(*_common, "loa_texture1", osg::Uniform::SAMPLER_2D)->set(1);
+    uniform(*_common, "loa_texture2", osg::Uniform::SAMPLER_2D)->set(2);
     // The fixed-function state the styles reproduce starts from OSG's defaults; the model's
     // StateSets carry their own (bind()). The alpha test is the shaders' (loa_alphaFunc): GL's
     // would test the blend-weighted alpha of the A-buffer pass.
