@@ -20,9 +20,11 @@
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageFile>
 
+#include <osg/AlphaFunc>
 #include <osg/BlendFunc>
 #include <osg/Geode>
 #include <osg/Geometry>
+#include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osg/TexEnv>
 #include <osg/TexMat>
@@ -416,7 +418,8 @@ TEST(LoARenderFullFrameGLTest, PhotorealisticIsThePlainRenderOfRealScenes)
 
 // Texture state the test scenes lack, each on a quad of its own (a feature each): a base texture
 // with a luminance lightmap on unit 1 tiled by a texture matrix (MODULATE), an S3TC (DXT1)
-// texture, a blended luminance-alpha texture, and a base texture with an ADD texture on unit 2.
+// texture, a blended luminance-alpha texture, a base texture with an ADD texture on unit 2, and an
+// alpha-tested card (AlphaFunc, 20 m above the others, overlapping two of them).
 // The photorealistic style combines units 0-2 as the fixed function does
 // (FixedFunctionUniforms::kUnits); same bars as the demo city.
 namespace
@@ -506,7 +509,17 @@ TEST(LoARenderFullFrameGLTest, PhotorealisticIsThePlainRenderOfEveryTextureState
     plane->setColor(osg::Vec4(0.5f, 0.55f, 0.5f, 1.0f));
     ground->addDrawable(plane.get());
     Feature::attach(*ground, new Feature(5, FeatureType::Terrain));
-    for (osg::Node* n : {lightmapped.get(), compressed.get(), blended.get(), added.get(), ground.get()})
+    // An alpha-tested card (osg::AlphaFunc GREATER 0.5, no blending): a tree's shape cut from a quad.
+    auto cutout = image(8, 8, GL_RGBA, [](int x, int y, unsigned char* p)
+                        { p[0] = 40, p[1] = 120 + 10 * y, p[2] = 50, p[3] = (x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) < 9 ? 255 : 0; });
+    osg::ref_ptr<osg::Geode> card = texturedQuadFeature(-45, -45, 6);
+    osg::StateSet* s6 = card->getOrCreateStateSet();
+    s6->setTextureAttributeAndModes(0, texture(cutout.get()).get());
+    s6->setAttributeAndModes(new osg::AlphaFunc(osg::AlphaFunc::GREATER, 0.5f));
+    osg::ref_ptr<osg::MatrixTransform> lifted = new osg::MatrixTransform(osg::Matrix::translate(0, 0, 20));
+    lifted->addChild(card.get());
+    for (osg::Node* n : std::initializer_list<osg::Node*>{lightmapped.get(), compressed.get(), blended.get(),
+                                                          added.get(), ground.get(), lifted.get()})
         g->addChild(n);
     const TestScene scene{"texture-states", g, false};
     expectIdentity(scene, "top", 1920, 1080, nullptr);
