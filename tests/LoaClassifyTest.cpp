@@ -107,3 +107,17 @@ TEST(LoaClassifyTest, ErrorsAreClearWithTheirExitStatus)
     EXPECT_EQ(loatest::run(classify() + " '" + city + "' --rules '" + city + "'", out), 1) << out;
     EXPECT_NE(out.find("not an osgLoA::ClassificationRuleSet"), std::string::npos) << out;
 }
+
+// The tools find the project's osgDB plugins beside their executable (loa::findPlugins): without
+// OSG_LIBRARY_PATH, reading the demo city's pseudo file needs osgdb_loacity and typing its
+// features needs the serializers. Before, this printed "cannot read 'demo.loacity': no such file".
+TEST(LoaClassifyTest, FindsItsPluginsWithoutOsgLibraryPath)
+{
+    std::string out;
+    const int status =
+        loatest::run("env -u OSG_LIBRARY_PATH '" + std::string(LOA_CLASSIFY_EXE) + "' demo.loacity", out);
+    EXPECT_EQ(status, 0) << out;
+    EXPECT_NE(out.find("401 units: 401 kept from the model data"), std::string::npos) << out;
+    EXPECT_EQ(out.find("no such file"), std::string::npos) << out;
+    EXPECT_EQ(out.find("Unsupported wrapper"), std::string::npos) << out;
+}

@@ -8,15 +8,36 @@
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
+#include <algorithm>
 #include <cmath>
+#include <unistd.h>
 #include <iostream>
 #include <sstream>
 
 namespace loa
 {
 
+void findPlugins()
+{
+    // The executable's folder (Linux: /proc/self/exe), then the lib folders beside it that hold
+    // our osgPlugins-<version>/: the build tree's and the install prefix's.
+    char buffer[4096];
+    const ssize_t n = ::readlink("/proc/self/exe", buffer, sizeof(buffer) - 1);
+    if (n <= 0) return;
+    buffer[n] = '\0';
+    const std::string bin = osgDB::getFilePath(buffer);
+    osgDB::FilePathList& paths = osgDB::Registry::instance()->getLibraryFilePathList();
+    for (const char* relative : {LOA_BUILD_BIN_TO_LIB, LOA_BIN_TO_LIB})
+    {
+        const std::string lib = osgDB::getRealPath(bin + "/" + relative);
+        if (osgDB::fileType(lib + "/" + LOA_PLUGIN_DIR_NAME) != osgDB::DIRECTORY) continue;
+        if (std::find(paths.begin(), paths.end(), lib) == paths.end()) paths.push_front(lib);
+    }
+}
+
 int runTool(const char* tool, const std::function<int()>& body)
 {
+    findPlugins();
     try
     {
         return body();

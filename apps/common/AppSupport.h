@@ -33,6 +33,11 @@ enum ExitCode
     kNoContext = 3, ///< no usable EGL / OpenGL
 };
 
+/** Puts the folder holding our osgDB plugins (osgPlugins-<version>/) beside the executable on
+ *  osgDB's library path: the build tree's lib/ and the install prefix's libdir, where they
+ *  exist. runTool calls it first, so no tool needs OSG_LIBRARY_PATH. */
+void findPlugins();
+
 /** Runs a tool's body and maps exceptions to one line "<tool>: error: <what>" on stderr and
  *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,
  *  anything else 1. */

@@ -443,6 +443,10 @@ int run(const Options& o)
                   << st.aBufferDraws << " A-buffer draws, " << st.pingPongDraws
                   << " ping-pong draws; A-buffer " << (st.aBuffer ? "used" : "not needed")
                   << ", unsharp masking " << (st.unsharp ? "on" : "off") << "\n";
+        if (st.drawnFeatures == 0)
+            std::cerr << "loa-render: warning: no feature of the scenario is in view ("
+                      << loaNode->getFeatureIndex().size()
+                      << " features in the model): the frame shows the model unstyled or nothing\n";
         const osgLoA::ABufferFrameStatistics ab =
             loaNode->getRenderer()->getABuffer()->getLastFrameStatistics();
         const auto mem = osgLoA::TransitionRenderer::memory(
