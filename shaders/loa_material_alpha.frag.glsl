@@ -12,22 +12,27 @@ uniform int loa_alphaFunc = 0x0207; // GL_ALWAYS: no alpha test
 uniform float loa_alphaRef = 0.0;
 uniform bool loa_blending = false;
 
+// The model's alpha test (osg::AlphaFunc, as the fixed function tests it) on an opacity; also
+// linked into the LoA passes (loa_pass.frag.glsl, TransitionRenderer).
+bool loa_alphaFuncPasses(float a)
+{
+    switch (loa_alphaFunc)
+    {
+    case 0x0200: return false;
+    case 0x0201: return a < loa_alphaRef;
+    case 0x0202: return a == loa_alphaRef;
+    case 0x0203: return a <= loa_alphaRef;
+    case 0x0204: return a > loa_alphaRef;
+    case 0x0205: return a != loa_alphaRef;
+    case 0x0206: return a >= loa_alphaRef;
+    default: return true;
+    }
+}
+
 bool loa_materialCovers(vec2 texCoord, vec4 color)
 {
     float a = color.a;
     if (loa_hasTexture)
         a *= texture(loa_baseTexture, texCoord).a;
-    bool passes = true;
-    switch (loa_alphaFunc)
-    {
-    case 0x0200: passes = false; break;
-    case 0x0201: passes = a < loa_alphaRef; break;
-    case 0x0202: passes = a == loa_alphaRef; break;
-    case 0x0203: passes = a <= loa_alphaRef; break;
-    case 0x0204: passes = a > loa_alphaRef; break;
-    case 0x0205: passes = a != loa_alphaRef; break;
-    case 0x0206: passes = a >= loa_alphaRef; break;
-    default: break;
-    }
-    return passes && (!loa_blending || a >= 0.5);
+    return loa_alphaFuncPasses(a) && (!loa_blending || a >= 0.5);
 }

@@ -20,7 +20,7 @@ uniform vec4 loa_styleEdge[16];      // edge colour (rgb) and strength (a) of co
 uniform float loa_styleUnsharp[16];  // unsharp-masking strength of configuration j's style
 uniform uint loa_featureId;
 uniform sampler2D loa_baseTexture;
-uniform bool loa_hasTexture;         // unit 0 has a texture (osgLoA::FixedFunctionUniforms)
+uniform bool loa_hasTexture = false; // unit 0 has a texture (osgLoA::FixedFunctionUniforms)
 uniform int loa_alphaFunc = 0x0207;  // the model's alpha test (GL comparison; GL_ALWAYS: none)
 uniform float loa_alphaRef = 0.0;
 uniform bool loa_blending = false;   // the model blends (GL_BLEND) where this is drawn
@@ -63,22 +63,10 @@ float loa_materialOpacity()
 
 // The model's alpha test on its material opacity (osg::AlphaFunc, as the fixed function tests
 // it): alpha-tested cards, fences and billboards keep their shape in every pass and style.
+bool loa_alphaFuncPasses(float a); // loa_material_alpha.frag.glsl
 bool loa_alphaTestPasses()
 {
-    if (loa_alphaFunc == 0x0207)
-        return true;
-    float a = loa_materialOpacity();
-    switch (loa_alphaFunc)
-    {
-    case 0x0200: return false;
-    case 0x0201: return a < loa_alphaRef;
-    case 0x0202: return a == loa_alphaRef;
-    case 0x0203: return a <= loa_alphaRef;
-    case 0x0204: return a > loa_alphaRef;
-    case 0x0205: return a != loa_alphaRef;
-    case 0x0206: return a >= loa_alphaRef;
-    default: return true;
-    }
+    return loa_alphaFunc == 0x0207 || loa_alphaFuncPasses(loa_materialOpacity());
 }
 
 // Drops fragments hidden behind the G-buffer's front surface. The tolerance grows with the

@@ -81,18 +81,7 @@ std::vector<Layer> staircase(int k, unsigned seed)
 
 osg::ref_ptr<osg::Geometry> quad(const Layer& l)
 {
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back(osg::Vec3(l.x0, -1.5f, -l.distance));
-    v->push_back(osg::Vec3(l.x1, -1.5f, -l.distance));
-    v->push_back(osg::Vec3(l.x1, 1.5f, -l.distance));
-    v->push_back(osg::Vec3(l.x0, 1.5f, -l.distance));
-    g->setVertexArray(v.get());
-    osg::ref_ptr<osg::Vec4Array> c = new osg::Vec4Array;
-    c->push_back(l.color);
-    g->setColorArray(c.get(), osg::Array::BIND_OVERALL);
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLE_FAN, 0, 4));
-    return g;
+    return loatest::depthQuad(l.x0, l.x1, 1.5f, l.distance, l.color);
 }
 
 struct Viewport

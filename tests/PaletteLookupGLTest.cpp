@@ -328,9 +328,10 @@ TEST(PaletteLookupGLTest, PaletteStyleLinksIntoThePipelinePrograms)
     ASSERT_TRUE(context->realize());
     ASSERT_TRUE(context->makeCurrent());
     // As TransitionRenderer::program builds them: its vertex shaders, loa_transition.frag.glsl,
-    // the style, the A-buffer writer for that pass, and loa_pass.frag.glsl with the pass define.
+    // the alpha test, the style, the A-buffer writer for that pass, and loa_pass.frag.glsl with
+    // the pass define.
     const std::vector<std::string> common = {"loa_style.vert.glsl", "loa_landmark.vert.glsl",
-                                             "loa_transition.frag.glsl"};
+                                             "loa_transition.frag.glsl", "loa_material_alpha.frag.glsl"};
     for (const std::string define : {"LOA_PASS_GBUFFER_COLOR", "LOA_PASS_ABUFFER", "LOA_PASS_PINGPONG"})
     {
         osg::ref_ptr<osg::Program> p = style->createProgram(common);

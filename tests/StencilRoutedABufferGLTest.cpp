@@ -6,6 +6,8 @@
 #include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/OffscreenRenderer>
 
+#include "support/TestSupport.h"
+
 #include <osg/Geometry>
 
 #include <gtest/gtest.h>
@@ -34,21 +36,7 @@ struct Layer
 
 osg::ref_ptr<osg::Geometry> quad(const Layer& l)
 {
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back(osg::Vec3(l.x0, -1.0f, -l.distance));
-    v->push_back(osg::Vec3(l.x1, -1.0f, -l.distance));
-    v->push_back(osg::Vec3(l.x1, 1.0f, -l.distance));
-    v->push_back(osg::Vec3(l.x0, 1.0f, -l.distance));
-    g->setVertexArray(v.get());
-    osg::ref_ptr<osg::Vec4Array> c = new osg::Vec4Array;
-    c->push_back(l.color);
-    g->setColorArray(c.get(), osg::Array::BIND_OVERALL);
-    osg::ref_ptr<osg::Vec3Array> n = new osg::Vec3Array;
-    n->push_back(osg::Vec3(0, 0, 1));
-    g->setNormalArray(n.get(), osg::Array::BIND_OVERALL);
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLE_FAN, 0, 4));
-    return g;
+    return loatest::depthQuad(l.x0, l.x1, 1.0f, l.distance, l.color);
 }
 
 /** K full-view layers at distinct distances in a scrambled order, colours in whole 1/255 steps. */

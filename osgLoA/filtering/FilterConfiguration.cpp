@@ -353,7 +353,7 @@ FilterConfiguration::Report FilterConfiguration::apply(osg::Node& scene, const O
         }
     }
     if (options.progress) options.progress(total, total, std::string());
-    if (options.fromCache) *options.fromCache = cached;
+    report.fromCache = cached;
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return report;

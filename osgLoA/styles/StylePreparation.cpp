@@ -62,6 +62,17 @@ std::vector<std::string> StylePreparation::preparedStyles(const osg::Node& model
     return out;
 }
 
+void StylePreparation::Report::add(const Report& other)
+{
+    styles.insert(styles.end(), other.styles.begin(), other.styles.end());
+    palettes += other.palettes;
+    abstractTextures += other.abstractTextures;
+    abstractFromCache += other.abstractFromCache;
+    skipped += other.skipped;
+    messages.insert(messages.end(), other.messages.begin(), other.messages.end());
+    milliseconds += other.milliseconds;
+}
+
 StylePreparation::Report StylePreparation::prepare(osg::Node& model, const UsageScenario& scenario)
 {
     return prepare(model, scenario, Options());
@@ -114,8 +125,6 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             fo.cache = cache.get();
             fo.threads = options.threads;
             fo.maxAnisotropy = options.maxAnisotropy;
-            unsigned fromCache = 0;
-            fo.fromCache = &fromCache;
             const auto start = std::chrono::steady_clock::now();
             int lastTenth = -1;
             fo.progress = [&](unsigned n, unsigned total, const std::string& texture)
@@ -138,7 +147,7 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             };
             const FilterConfiguration::Report r = TextureAbstraction::createConfiguration()->apply(model, fo);
             report.abstractTextures = r.textures;
-            report.abstractFromCache = fromCache;
+            report.abstractFromCache = r.fromCache;
             report.skipped += r.skipped;
             for (const std::string& m : r.messages)
             {

@@ -113,15 +113,7 @@ void LoANode::bind()
         _preparation = StylePreparation::Report();
         for (unsigned i = 0; i < getNumChildren(); ++i)
         {
-            const StylePreparation::Report r =
-                StylePreparation::prepare(*getChild(i), *_scenario, _preparationOptions);
-            _preparation.styles.insert(_preparation.styles.end(), r.styles.begin(), r.styles.end());
-            _preparation.palettes += r.palettes;
-            _preparation.abstractTextures += r.abstractTextures;
-            _preparation.abstractFromCache += r.abstractFromCache;
-            _preparation.skipped += r.skipped;
-            _preparation.messages.insert(_preparation.messages.end(), r.messages.begin(), r.messages.end());
-            _preparation.milliseconds += r.milliseconds;
+            _preparation.add(StylePreparation::prepare(*getChild(i), *_scenario, _preparationOptions));
         }
         _evaluator->bind(_scenario.get(), _index);
         osg::StateSet* ss = getOrCreateStateSet();

@@ -215,9 +215,8 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
     _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
     uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
-    uniform(*_common, "loa_texture1", osg::Uniform::SAMPLER_2D)->set(1);
-    uniform(*_common, "loa_texture2", osg::Uniform::SAMPLER_2D)->set(2);
-    // The fixed-function state the styles reproduce starts from OSG's defaults; the model's
+    // The fixed-function state the styles reproduce starts from OSG's defaults (with the
+    // samplers of texture units 1 and 2); the model's
     // StateSets carry their own (bind()). The alpha test is the shaders' (loa_alphaFunc): GL's
     // would test the blend-weighted alpha of the A-buffer pass.
     FixedFunctionUniforms::setDefaults(*_common);
@@ -274,6 +273,7 @@ osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleS
     for (const char* v : kVertexShaders)
         p->addShader(ShaderLibrary::createShader(v).get());
     p->addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
+    p->addShader(ShaderLibrary::createShader("loa_material_alpha.frag.glsl").get());
     if (!styleShader.empty())
     {
         p->addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());

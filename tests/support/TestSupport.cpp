@@ -82,6 +82,25 @@ osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Imag
     return osgLoA::ImageFile::read(path);
 }
 
+osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance, const osg::Vec4& color)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    v->push_back(osg::Vec3(x0, -halfHeight, -distance));
+    v->push_back(osg::Vec3(x1, -halfHeight, -distance));
+    v->push_back(osg::Vec3(x1, halfHeight, -distance));
+    v->push_back(osg::Vec3(x0, halfHeight, -distance));
+    g->setVertexArray(v.get());
+    osg::ref_ptr<osg::Vec4Array> c = new osg::Vec4Array;
+    c->push_back(color);
+    g->setColorArray(c.get(), osg::Array::BIND_OVERALL);
+    osg::ref_ptr<osg::Vec3Array> n = new osg::Vec3Array;
+    n->push_back(osg::Vec3(0, 0, 1));
+    g->setNormalArray(n.get(), osg::Array::BIND_OVERALL);
+    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLE_FAN, 0, 4));
+    return g;
+}
+
 std::string paramName(const std::string& param)
 {
     std::string n = param;

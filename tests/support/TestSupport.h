@@ -6,6 +6,7 @@
 #include <osgLoA/render/HeadlessContext>
 
 #include <osg/Geode>
+#include <osg/Geometry>
 #include <osg/Image>
 #include <osg/Node>
 
@@ -36,6 +37,10 @@ std::string toOsgt(const osg::Node& node);
 /** Reads the golden PNG tests/data/golden/NAME; when LOA_UPDATE_GOLDENS=1 writes actual
  *  there instead (scripts/update-goldens) and returns null. */
 osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Image& actual);
+
+/** A one-colour quad over x in [x0, x1], y in [-halfHeight, halfHeight] at z = -distance, normal
+ *  +z (the A-buffer tests' layers under an orthographic view). */
+osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance, const osg::Vec4& color);
 
 /** A gtest parameter as a test name: '-' becomes '_' (style names such as "hybrid-toon"). */
 std::string paramName(const std::string& param);
