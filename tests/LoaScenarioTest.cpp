@@ -31,11 +31,13 @@ int scenario(const std::string& args, std::string& output)
     return loatest::run(tool() + " " + args, output);
 }
 
-/** Runs loa-scenario with args and parses its stdout (stderr dropped) as JSON. */
+/** Runs loa-scenario with args and parses its stdout (stderr dropped) as JSON. OSG's notices
+ *  are on (OSG_NOTIFY_LEVEL=NOTICE, as for a user): they must go to stderr, not into the JSON. */
 json scenarioJson(const std::string& args)
 {
     std::string out;
-    const int status = loatest::run("{ " + tool() + " " + args + " 2>/dev/null; }", out);
+    const int status =
+        loatest::run("{ OSG_NOTIFY_LEVEL=NOTICE " + tool() + " " + args + " 2>/dev/null; }", out);
     EXPECT_EQ(status, 0) << args << "\n" << out;
     try
     {

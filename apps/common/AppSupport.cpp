@@ -8,7 +8,10 @@
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
+#include <osg/Notify>
+
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <unistd.h>
 #include <iostream>
@@ -35,8 +38,28 @@ void findPlugins()
     }
 }
 
+namespace
+{
+/** OSG's standard handler writes NOTICE and INFO to stdout: a tool that writes data there
+ *  (JSON, PPM, a scenario) would get diagnostics inside it. Every level goes to stderr. */
+class StderrNotifyHandler : public osg::NotifyHandler
+{
+public:
+    void notify(osg::NotifySeverity, const char* message) override
+    {
+        std::fputs(message, stderr);
+    }
+};
+} // namespace
+
+void notifyToStderr()
+{
+    osg::setNotifyHandler(new StderrNotifyHandler);
+}
+
 int runTool(const char* tool, const std::function<int()>& body)
 {
+    notifyToStderr();
     findPlugins();
     try
     {

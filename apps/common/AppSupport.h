@@ -37,6 +37,8 @@ enum ExitCode
  *  osgDB's library path: the build tree's lib/ and the install prefix's libdir, where they
  *  exist. runTool calls it first, so no tool needs OSG_LIBRARY_PATH. */
 void findPlugins();
+/** Sends every OSG notification to stderr (stdout carries the tools' data); runTool calls it. */
+void notifyToStderr();
 
 /** Runs a tool's body and maps exceptions to one line "<tool>: error: <what>" on stderr and
  *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,
