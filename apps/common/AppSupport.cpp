@@ -11,11 +11,11 @@
 #include <osg/Notify>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
-#include <unistd.h>
+#include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 
 namespace loa
 {
@@ -45,10 +45,7 @@ namespace
 class StderrNotifyHandler : public osg::NotifyHandler
 {
 public:
-    void notify(osg::NotifySeverity, const char* message) override
-    {
-        std::fputs(message, stderr);
-    }
+    void notify(osg::NotifySeverity, const char* message) override { std::fputs(message, stderr); }
 };
 } // namespace
 
@@ -357,4 +354,42 @@ void takeModelArgument(const std::string& a, std::string& model)
     if (!model.empty()) throw UsageError("more than one model given ('" + model + "' and '" + a + "')");
     model = a;
 }
+} // namespace loa
+
+namespace loa
+{
+
+const char* const kRulesHelp =
+    R"(  --rules FILE          classification rules (.osgt/.osgb/.osgx holding an
+                        osgLoA::ClassificationRuleSet) tried before the built-in rules;
+                        repeatable, the first file's rules first
+  --rules-only FILE     classify with FILE's rules instead of the built-in ones (repeatable)
+  --override            let the rules replace types the model data gives (never a user's)
+)";
+
+osg::ref_ptr<osgLoA::ClassificationRuleSet> RulesChoice::assemble() const
+{
+    return osgLoA::ClassificationRuleSet::assemble(files, only, overrideModelData);
+}
+
+bool parseRulesOption(const std::string& a, Args& args, RulesChoice& choice)
+{
+    if (a == "--rules" || a == "--rules-only")
+    {
+        const bool only = a == "--rules-only";
+        if (!choice.files.empty() && choice.only != only)
+            throw UsageError(
+                "--rules adds to the built-in rules and --rules-only replaces them: use one of them");
+        choice.only = only;
+        choice.files.push_back(args.value(a));
+        return true;
+    }
+    if (a == "--override")
+    {
+        choice.overrideModelData = true;
+        return true;
+    }
+    return false;
+}
+
 } // namespace loa

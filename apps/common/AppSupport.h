@@ -5,6 +5,7 @@
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityParameters>
 #include <osgLoA/render/OffscreenRenderer>
+#include <osgLoA/semantics/ClassificationRuleSet>
 
 #include <osg/Node>
 #include <osg/Texture2D>
@@ -114,6 +115,22 @@ void checkCameraOptions(const CameraChoice& choice);
 void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help);
 /** The help lines for the camera options. */
 extern const char* const kCameraHelp;
+
+/** --rules FILE (repeatable: added before the default rules), --rules-only FILE (repeatable:
+ *  instead of them), --override: the classification every tool shares
+ *  (ClassificationRuleSet::assemble). */
+struct RulesChoice
+{
+    std::vector<std::string> files;
+    bool only = false;
+    bool overrideModelData = false;
+    /** The rule set; throws std::runtime_error naming an unreadable file. */
+    osg::ref_ptr<osgLoA::ClassificationRuleSet> assemble() const;
+};
+/** Consumes --rules, --rules-only, --override; false when `a` is none of them. A mix of
+ *  --rules and --rules-only is a UsageError. */
+bool parseRulesOption(const std::string& a, Args& args, RulesChoice& choice);
+extern const char* const kRulesHelp;
 
 } // namespace loa
 

@@ -32,10 +32,9 @@ of each type it holds. Features that the model data already typed keep their typ
 classify the rest, and the appearance fallback what no rule matched (docs/classification.md).
 
 options:
-  --rules FILE          a rule set (.osgt/.osgb/.osgx holding an osgLoA::ClassificationRuleSet)
-                        instead of the built-in default rules
-  --override            let the rules override types given by the model data
-  --interest FILE       interest values per type and per feature id and the landmark threshold
+)";
+const char* kHelpMiddle =
+    R"(  --interest FILE       interest values per type and per feature id and the landmark threshold
                         (an osgLoA::FeatureInterest in .osgt/.osgb; docs/landmarks.md)
   --landmark-threshold T
                         features with interest >= T (in [0,1]) are landmarks (default: the
@@ -61,8 +60,9 @@ exit status: 0 done, 1 the model, the rules or an output could not be read or wr
 
 struct Options
 {
-    std::string model, rules, image, save, writeRules, interest;
-    bool json = false, override_ = false, bestViews = false;
+    std::string model, image, save, writeRules, interest;
+    loa::RulesChoice rules;
+    bool json = false, bestViews = false;
     float landmarkThreshold = -1.0f;
     int width = 1024, height = 768;
     loa::CameraChoice camera;
@@ -75,13 +75,13 @@ Options parse(int argc, char** argv)
     while (!args.empty())
     {
         const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-classify", std::string(kHelp) + loa::kCameraHelp + kHelpTail);
+        loa::exitOnHelpOrVersion(a, "loa-classify",
+                                 std::string(kHelp) + loa::kRulesHelp + kHelpMiddle + loa::kCameraHelp +
+                                     kHelpTail);
         if (loa::parseCameraOption(a, args, o.camera))
             continue;
-        else if (a == "--rules")
-            o.rules = args.value(a);
-        else if (a == "--override")
-            o.override_ = true;
+        else if (loa::parseRulesOption(a, args, o.rules))
+            continue;
         else if (a == "--interest")
             o.interest = args.value(a);
         else if (a == "--landmark-threshold")
@@ -122,10 +122,7 @@ int run(const Options& o)
         std::cout << "wrote " << o.writeRules << "\n";
         return loa::kOk;
     }
-    osg::ref_ptr<osgLoA::ClassificationRuleSet> rules = o.rules.empty()
-                                                            ? osgLoA::ClassificationRuleSet::createDefault()
-                                                            : osgLoA::ClassificationRuleSet::read(o.rules);
-    if (o.override_) rules->setOverrideModelData(true);
+    osg::ref_ptr<osgLoA::ClassificationRuleSet> rules = o.rules.assemble();
 
     const auto t0 = std::chrono::steady_clock::now();
     osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);

@@ -9,6 +9,7 @@
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
@@ -45,7 +46,9 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
   --frames N            render N timed frames after one warm-up frame and report the
                         median and minimum frame time (each frame ends with glFinish)
   --out FILE.png        where to write the image (default out/render.png)
-  --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON
+  --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON;
+                        with --scenario or a LoA --style also the classified features per
+                        type, counted as loa-classify --json counts them
   --city "K=V ..."      demo city parameters, e.g. "seed=7 blocksX=6 blocksY=4"
                         (keys: see docs/demo-city.md); ignored with MODEL
   --scenario NAME|FILE  draw with LoA transitions: wrap the scene in a LoA node carrying the
@@ -90,6 +93,7 @@ struct Options
     bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
     loa::CameraChoice camera;
+    loa::RulesChoice rules;
     int width = 1280, height = 720, samples = 0;
     unsigned frames = 0;
     bool glInfo = false;
@@ -102,8 +106,11 @@ Options parse(int argc, char** argv)
     while (!args.empty())
     {
         const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-render", std::string(kHelp) + loa::kCameraHelp + kHelpOptions);
+        loa::exitOnHelpOrVersion(a, "loa-render",
+                                 std::string(kHelp) + loa::kCameraHelp + kHelpOptions + loa::kRulesHelp);
         if (loa::parseCameraOption(a, args, o.camera))
+            continue;
+        else if (loa::parseRulesOption(a, args, o.rules))
             continue;
         else if (a == "--size")
             loa::parseSize(args.value(a), o.width, o.height);
@@ -362,7 +369,8 @@ int run(const Options& o)
         // As the loa plugin does: features the model carries keep their type, the classifier's
         // rules and the appearance fallback type the rest (a model without features would
         // otherwise be drawn unstyled).
-        const osgLoA::FeatureClassifier::Report classified = osgLoA::FeatureClassifier().classify(*loaNode);
+        const osgLoA::FeatureClassifier::Report classified =
+            osgLoA::FeatureClassifier(o.rules.assemble().get()).classify(*loaNode);
         std::cout << "classifier: " << classified.summary() << "\n";
         osgLoA::TransitionRenderer::Settings rs = loaNode->getRenderer()->getSettings();
         rs.samples = o.samplesABuffer;
@@ -487,7 +495,9 @@ int run(const Options& o)
           << ", \"min_ms\": " << times.min() << ", \"max_ms\": " << times.max() << ",\n  \"frame_ms\": [";
         for (size_t i = 0; i < times.milliseconds.size(); ++i)
             j << (i ? ", " : "") << times.milliseconds[i];
-        j << "],\n  \"scene\": " << stats.toJson() << ",\n  \"gl\": " << caps.toJson() << ",\n"
+        j << "],\n  \"scene\": " << stats.toJson() << ",\n";
+        if (loaNode) j << "  \"features\": " << osgLoA::FeatureIndex(*loaNode).counts().toJson() << ",\n";
+        j << "  \"gl\": " << caps.toJson() << ",\n"
           << "  \"machine\": {\"cpu\": \"" << osgLoA::jsonEscape(machine.cpuModel)
           << "\", \"cores\": " << machine.cores << ", \"memory_gib\": " << machine.memoryGiB << ", \"os\": \""
           << osgLoA::jsonEscape(machine.os) << "\"}\n}\n";

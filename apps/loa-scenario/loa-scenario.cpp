@@ -988,6 +988,7 @@ struct ExplainOptions
     unsigned features = 25;
     int width = 1024, height = 768;
     loa::CameraChoice camera;
+    loa::RulesChoice rules;
 };
 
 ExplainOptions parseExplain(loa::Args& args)
@@ -997,6 +998,8 @@ ExplainOptions parseExplain(loa::Args& args)
     {
         const std::string a = args.next();
         if (loa::parseCameraOption(a, args, o.camera))
+            continue;
+        else if (loa::parseRulesOption(a, args, o.rules))
             continue;
         else if (a == "--model")
             o.model = args.value(a);
@@ -1052,7 +1055,7 @@ int cmdExplain(loa::Args& args)
     }
     osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);
     const osgLoA::FeatureClassifier::Report report =
-        osgLoA::FeatureClassifier(osgLoA::ClassificationRuleSet::createDefault()).classify(*scene);
+        osgLoA::FeatureClassifier(o.rules.assemble().get()).classify(*scene);
 
     osg::ref_ptr<osgLoA::LoANode> node = new osgLoA::LoANode;
     node->addChild(scene.get());
@@ -1224,9 +1227,10 @@ int cmdExplain(loa::Args& args)
 
 int run(int argc, char** argv)
 {
-    const std::string help = std::string(kHelp) +
-                             "  camera options of explain (as in loa-render and loa-classify):\n" +
-                             loa::kCameraHelp + kHelpTail;
+    const std::string help =
+        std::string(kHelp) + "  camera options of explain (as in loa-render and loa-classify):\n" +
+        loa::kCameraHelp + "  classification options of explain (as in loa-render and loa-classify):\n" +
+        loa::kRulesHelp + kHelpTail;
     loa::Args args(argc, argv);
     if (args.empty())
         throw loa::UsageError("no COMMAND given (list, show, validate, create, set, explain; see --help)");

@@ -2,17 +2,25 @@
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureIndex>
 
+#include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
 #include <osg/Material>
+#include <osg/PagedLOD>
+#include <osg/ProxyNode>
 #include <osg/Texture>
+#include <osg/Transform>
 #include <osg/UserDataContainer>
 #include <osg/ValueObject>
 #include <osgDB/FileNameUtils>
 
+#include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 namespace osgLoA
 {
@@ -68,6 +76,43 @@ void stateStrings(const osg::StateSet* ss, ClassificationRule::Field field, std:
                     }
 }
 
+/** "ground_z=12.5", "height = 30": data an exporter put into a description, not a name. ANY
+ *  leaves such strings out (a NODE_DESCRIPTION rule still sees them). */
+bool isKeyValue(const std::string& s)
+{
+    std::size_t i = s.find_first_not_of(" \t");
+    if (i == std::string::npos || !(std::isalpha(static_cast<unsigned char>(s[i])) || s[i] == '_'))
+        return false;
+    while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || std::strchr("_.:-", s[i])))
+        ++i;
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t'))
+        ++i;
+    return i < s.size() && s[i] == '=';
+}
+
+/** Whether path[k] is the scene root, a node that stands for a file (ProxyNode, PagedLOD), or
+ *  the top of a loaded file: its name says what the file is (a street circuit, a city), not
+ *  what each object in it is. */
+bool isFileLevel(const osg::NodePath& path, std::size_t k)
+{
+    if (k == 0) return true;
+    if (dynamic_cast<const osg::ProxyNode*>(path[k]) || dynamic_cast<const osg::PagedLOD*>(path[k]))
+        return true;
+    const osg::Node* parent = path[k - 1];
+    if (dynamic_cast<const osg::ProxyNode*>(parent) || dynamic_cast<const osg::PagedLOD*>(parent))
+        return true;
+    if (std::strcmp(parent->libraryName(), "osgLoA") == 0 && std::strcmp(parent->className(), "LoANode") == 0)
+        return true;
+    const std::string& name = path[k]->getName();
+    if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos) return true;
+    static const std::set<std::string> kModelExtensions = {
+        "3dc",     "3ds", "ac",  "blend", "bvh", "bz2",  "citygml", "dae",  "dxf",  "fbx",
+        "flt",     "gml", "glb", "gltf",  "iv",  "ive",  "json",    "kml",  "kmz",  "loa",
+        "loacity", "lwo", "lws", "md2",   "obj", "osg",  "osgb",    "osgt", "osgx", "osm",
+        "pbf",     "ply", "shp", "stl",   "txp", "vrml", "wrl",     "x",    "xml",  "zip"};
+    return kModelExtensions.count(osgDB::getLowerCaseFileExtension(name)) > 0;
+}
+
 class SubtreeNodes : public osg::NodeVisitor
 {
 public:
@@ -102,7 +147,7 @@ std::vector<std::string> FeatureClassifier::strings(const osg::Node& node, Class
     if ((field == F::NODE_NAME || field == F::ANY) && !node.getName().empty()) out.push_back(node.getName());
     if (field == F::NODE_DESCRIPTION || field == F::ANY)
         for (const std::string& d : node.getDescriptions())
-            out.push_back(d);
+            if (field == F::NODE_DESCRIPTION || !isKeyValue(d)) out.push_back(d);
     if (field == F::USER_VALUE) // not part of ANY: user values are arbitrary data
         if (const osg::UserDataContainer* udc = node.getUserDataContainer())
             for (unsigned i = 0; i < udc->getNumUserObjects(); ++i)
@@ -150,12 +195,15 @@ void FeatureClassifier::apply(osg::Node& node)
     traverse(node);
 }
 
-int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes) const
+int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes, bool ancestor,
+                                  bool overridingOnly) const
 {
     const auto& rules = _rules->getRules();
     for (std::size_t r = 0; r < rules.size(); ++r)
     {
         const ClassificationRule& rule = *rules[r];
+        if (ancestor && !rule.getInheritable()) continue;
+        if (overridingOnly && !rule.getOverridesModelData()) continue;
         for (const osg::Node* n : nodes)
         {
             for (const std::string& s : strings(*n, rule.getField(), rule.getUserValueKey()))
@@ -191,27 +239,41 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
             u.created = true;
         }
 
-    // Rules, level by level (the unit and its subtree first, then each ancestor), cached per
-    // ancestor because many units share them.
-    std::map<const osg::Node*, int> ancestorMatch;
+    // Rules, level by level (the unit and its subtree first, then each ancestor but the root
+    // and file-level groups, with inheritable rules only), cached per ancestor because many
+    // units share them. A type from the model data is replaced only by rules that override
+    // model data (all rules when the set overrides).
+    bool anyOverriding = false;
+    for (const auto& r : _rules->getRules())
+        anyOverriding = anyOverriding || r->getOverridesModelData();
+    std::map<std::pair<const osg::Node*, bool>, int> ancestorMatch;
     for (Unit& u : _units)
     {
         Feature& f = *u.feature;
         const Feature::Source src = f.getSource();
         const bool classified = src == Feature::MODEL_DATA || src == Feature::USER;
-        if (src == Feature::USER || (classified && !_rules->getOverrideModelData()))
+        const bool overridingOnly = classified && !_rules->getOverrideModelData();
+        if (src == Feature::USER || (overridingOnly && !anyOverriding))
         {
             ++report.keptModelData;
             continue;
         }
+        // The unit's own level: its subtree, and for a drawable its Geode (which holds the
+        // drawable's name and state as often as the drawable does).
         SubtreeNodes sub;
         u.node->accept(sub);
-        int match = matchLevel(sub.nodes);
-        for (std::size_t k = u.path.size() - 1; match < 0 && k-- > 0;)
+        std::size_t firstAncestor = u.path.size() - 1;
+        if (u.node->asDrawable() && firstAncestor > 0 && u.path[firstAncestor - 1]->asGeode())
+            sub.nodes.push_back(u.path[--firstAncestor]);
+        int match = matchLevel(sub.nodes, false, overridingOnly);
+        for (std::size_t k = firstAncestor; match < 0 && k-- > 0;)
         {
+            if (isFileLevel(u.path, k)) continue;
             const osg::Node* a = u.path[k];
-            auto it = ancestorMatch.find(a);
-            if (it == ancestorMatch.end()) it = ancestorMatch.emplace(a, matchLevel({a})).first;
+            const auto key = std::make_pair(a, overridingOnly);
+            auto it = ancestorMatch.find(key);
+            if (it == ancestorMatch.end())
+                it = ancestorMatch.emplace(key, matchLevel({a}, true, overridingOnly)).first;
             match = it->second;
         }
         if (match >= 0)
@@ -231,7 +293,7 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
     for (const Unit& u : _units)
         if (u.feature->getSource() == Feature::UNCLASSIFIED) ++report.unclassified;
 
-    mergeDrawableFeatures(report);
+    attachObjectFeatures(report);
 
     FeatureIndex index(root);
     index.numberUnnumbered();
@@ -325,47 +387,234 @@ void FeatureClassifier::classifyByAppearance(Report& report)
     }
 }
 
-void FeatureClassifier::mergeDrawableFeatures(Report& report)
+namespace
 {
-    // Created features of drawables, grouped by their Geode.
-    std::map<osg::Geode*, std::vector<std::size_t>> byGeode;
+/** Whether a transform holds geometry only: no transform and no model feature below it. */
+class GeometryOnly : public osg::NodeVisitor
+{
+public:
+    GeometryOnly() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) { setNodeMaskOverride(~0u); }
+    bool only = true;
+    void apply(osg::Node& n) override
+    {
+        if (!only) return;
+        if (Feature::get(n))
+        {
+            only = false;
+            return;
+        }
+        traverse(n);
+    }
+    void apply(osg::Transform&) override { only = false; }
+};
+
+osg::BoundingBoxd worldBox(osg::Node& node, const osg::NodePath& path)
+{
+    osg::ComputeBoundsVisitor cbv;
+    cbv.setNodeMaskOverride(~0u);
+    osg::Matrix toWorld = osg::computeLocalToWorld(osg::NodePath(path.begin(), path.end() - 1));
+    cbv.pushMatrix(toWorld);
+    node.accept(cbv);
+    const osg::BoundingBox& b = cbv.getBoundingBox();
+    osg::BoundingBoxd out;
+    if (b.valid()) out.set(osg::Vec3d(b._min), osg::Vec3d(b._max));
+    return out;
+}
+
+/** What a piece looks like, for the touching merge: the base texture's image (file name, else
+ *  the image itself) of the nearest state that sets one, else the nearest material's diffuse
+ *  colour, else "". */
+std::string lookOf(const osg::Node& node, const osg::NodePath& path)
+{
+    std::vector<const osg::Node*> chain(path.begin(), path.end() - 1);
+    chain.push_back(&node);
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+        if (const osg::StateSet* ss = (*it)->getStateSet())
+            if (const osg::Texture* t = dynamic_cast<const osg::Texture*>(
+                    ss->getTextureAttribute(0, osg::StateAttribute::TEXTURE)))
+                if (const osg::Image* img = t->getImage(0))
+                {
+                    if (!img->getFileName().empty()) return "texture:" + img->getFileName();
+                    std::ostringstream s;
+                    s << "image:" << static_cast<const void*>(img);
+                    return s.str();
+                }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+        if (const osg::StateSet* ss = (*it)->getStateSet())
+            if (const osg::Material* m =
+                    dynamic_cast<const osg::Material*>(ss->getAttribute(osg::StateAttribute::MATERIAL)))
+            {
+                const osg::Vec4& d = m->getDiffuse(osg::Material::FRONT);
+                std::ostringstream s;
+                s << "material:" << d.r() << "," << d.g() << "," << d.b() << "," << d.a();
+                return s.str();
+            }
+    return std::string();
+}
+
+bool isCarrierNode(const osg::Node* n)
+{
+    return n->asGeode() || n->asTransform();
+}
+} // namespace
+
+void FeatureClassifier::attachObjectFeatures(Report& report)
+{
+    // 1. Objects: each created unit's object node (the innermost transform below the root, when
+    //    it holds geometry only and grouping is on; else the unit's Geode), and one group of
+    //    units per (object, type, sub-type).
+    std::map<const osg::Node*, bool> geometryOnly;
+    auto transformObjectOf = [&](const Unit& u) -> osg::Node*
+    {
+        if (!_rules->getGroupObjects()) return nullptr;
+        for (std::size_t k = u.path.size() - 1; k-- > 0;)
+        {
+            osg::Transform* t = u.path[k]->asTransform();
+            if (!t) continue;
+            if (isFileLevel(u.path, k)) return nullptr; // the scene or a file is no object
+            auto it = geometryOnly.find(t);
+            if (it == geometryOnly.end())
+            {
+                GeometryOnly g;
+                for (unsigned c = 0; c < t->getNumChildren(); ++c)
+                    t->getChild(c)->accept(g);
+                it = geometryOnly.emplace(t, g.only).first;
+            }
+            return it->second ? t : nullptr; // only the innermost transform can be the object
+        }
+        return nullptr;
+    };
+    auto geodeOf = [](const Unit& u) -> osg::Geode*
+    {
+        osg::Geode* g = u.path.size() >= 2 ? u.path[u.path.size() - 2]->asGeode() : nullptr;
+        return g && !Feature::get(*g) ? g : nullptr;
+    };
+
+    typedef std::tuple<const osg::Node*, FeatureType, std::string> Key;
+    std::map<Key, std::size_t> groupOf;
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<bool> inTransform;
     for (std::size_t i = 0; i < _units.size(); ++i)
     {
         const Unit& u = _units[i];
         if (!u.created) continue;
-        osg::Geode* geode = u.path.size() >= 2 ? u.path[u.path.size() - 2]->asGeode() : nullptr;
-        if (geode && !Feature::get(*geode))
-            byGeode[geode].push_back(i);
-        else
+        const osg::Node* object = transformObjectOf(u);
+        const bool transformObject = object != nullptr;
+        if (!object) object = geodeOf(u) ? static_cast<const osg::Node*>(geodeOf(u)) : u.node.get();
+        const Key key(object, u.feature->getType(), u.feature->getSubType());
+        auto it = groupOf.find(key);
+        if (it == groupOf.end())
         {
-            Feature::attach(*u.node, u.feature.get());
-            ++report.featuresCreated;
+            it = groupOf.emplace(key, groups.size()).first;
+            groups.emplace_back();
+            inTransform.push_back(transformObject);
+        }
+        groups[it->second].push_back(i);
+    }
+
+    // 2. Touching pieces of a merge type outside transform objects that look alike are one
+    //    object (the walls and roof of a house): single linkage over world boxes, swept along x.
+    UnionFind uf(groups.size());
+    const std::vector<FeatureType> mergeTypes = _rules->mergeTouchingTypeList();
+    if (_rules->getGroupObjects() && !mergeTypes.empty())
+    {
+        const double tol = _rules->getMergeTolerance();
+        struct Box
+        {
+            osg::BoundingBoxd box;
+            std::size_t group;
+        };
+        // Per type and look: pieces of one object share their texture or material (the walls
+        // and roof of a tower share its texture atlas; a landmark beside a row of houses does
+        // not look like them).
+        std::map<std::pair<FeatureType, std::string>, std::vector<Box>> byType;
+        for (std::size_t g = 0; g < groups.size(); ++g)
+        {
+            const Unit& first = _units[groups[g].front()];
+            const FeatureType type = first.feature->getType();
+            if (inTransform[g] || std::find(mergeTypes.begin(), mergeTypes.end(), type) == mergeTypes.end())
+                continue;
+            osg::BoundingBoxd box;
+            for (std::size_t i : groups[g])
+                box.expandBy(worldBox(*_units[i].node, _units[i].path));
+            if (box.valid())
+                byType[std::make_pair(type, lookOf(*first.node, first.path))].push_back({box, g});
+        }
+        for (auto& kv : byType)
+        {
+            std::vector<Box>& boxes = kv.second;
+            std::sort(boxes.begin(), boxes.end(),
+                      [](const Box& a, const Box& b) { return a.box.xMin() < b.box.xMin(); });
+            for (std::size_t a = 0; a < boxes.size(); ++a)
+                for (std::size_t b = a + 1;
+                     b < boxes.size() && boxes[b].box.xMin() <= boxes[a].box.xMax() + tol; ++b)
+                {
+                    const osg::BoundingBoxd& p = boxes[a].box;
+                    const osg::BoundingBoxd& q = boxes[b].box;
+                    if (p.yMin() <= q.yMax() + tol && q.yMin() <= p.yMax() + tol &&
+                        p.zMin() <= q.zMax() + tol && q.zMin() <= p.zMax() + tol)
+                        uf.unite(boxes[a].group, boxes[b].group);
+                }
         }
     }
-    for (auto& kv : byGeode)
+    std::map<std::size_t, std::vector<std::size_t>> objects; // representative group -> units
+    for (std::size_t g = 0; g < groups.size(); ++g)
     {
-        osg::Geode* geode = kv.first;
+        std::vector<std::size_t>& units = objects[uf.find(g)];
+        units.insert(units.end(), groups[g].begin(), groups[g].end());
+    }
+
+    // 3. One Feature per object, on the fewest nodes that carry exactly its geometry: its
+    //    outermost Geode or transform holding nothing else, else each whole Geode, else each
+    //    drawable (one Feature then sits on several nodes; FeatureIndex counts it once).
+    std::map<const osg::Node*, std::size_t> unitsBelow; // units (any) under each Geode/transform
+    for (const Unit& u : _units)
+        for (std::size_t k = 0; k + 1 < u.path.size(); ++k)
+            if (isCarrierNode(u.path[k])) ++unitsBelow[u.path[k]];
+    for (const auto& kv : objects)
+    {
         const std::vector<std::size_t>& members = kv.second;
-        const Feature& first = *_units[members.front()].feature;
-        bool same = members.size() == geode->getNumChildren();
+        osg::ref_ptr<Feature> feature = _units[members.front()].feature;
+        std::set<std::string> subTypes;
+        std::map<Feature::Source, unsigned> sources;
         for (std::size_t i : members)
         {
-            const Feature& f = *_units[i].feature;
-            same = same && f.getType() == first.getType() && f.getSubType() == first.getSubType() &&
-                   f.getSource() == first.getSource();
+            subTypes.insert(_units[i].feature->getSubType());
+            ++sources[_units[i].feature->getSource()];
         }
-        if (same)
+        if (subTypes.size() > 1) feature->setSubType("");
+        feature->setSource(std::max_element(sources.begin(), sources.end(),
+                                            [](const std::pair<const Feature::Source, unsigned>& a,
+                                               const std::pair<const Feature::Source, unsigned>& b)
+                                            { return a.second < b.second; })
+                               ->first);
+        ++report.featuresCreated;
+        report.featuresMerged += unsigned(members.size() - 1);
+
+        std::map<const osg::Node*, std::size_t> count; // members under each Geode/transform
+        for (std::size_t i : members)
+            for (std::size_t k = 0; k + 1 < _units[i].path.size(); ++k)
+                if (isCarrierNode(_units[i].path[k])) ++count[_units[i].path[k]];
+        const osg::NodePath& first = _units[members.front()].path;
+        osg::Node* whole = nullptr;
+        for (std::size_t k = 1; k + 1 < first.size() && !whole; ++k)
+            if (isCarrierNode(first[k]) && count[first[k]] == members.size() &&
+                unitsBelow[first[k]] == members.size() && !Feature::get(*first[k]))
+                whole = first[k];
+        if (whole)
         {
-            Feature::attach(*geode, _units[members.front()].feature.get());
-            ++report.featuresCreated;
-            report.featuresMerged += static_cast<unsigned>(members.size() - 1);
+            Feature::attach(*whole, feature.get());
+            continue;
         }
-        else
-            for (std::size_t i : members)
-            {
-                Feature::attach(*_units[i].node, _units[i].feature.get());
-                ++report.featuresCreated;
-            }
+        std::set<osg::Node*> done;
+        for (std::size_t i : members)
+        {
+            osg::Geode* geode = geodeOf(_units[i]);
+            osg::Node* carrier = _units[i].node.get();
+            if (geode && count[geode] == unitsBelow[geode] && count[geode] == geode->getNumChildren())
+                carrier = geode;
+            if (done.insert(carrier).second) Feature::attach(*carrier, feature.get());
+        }
     }
 }
 
@@ -375,7 +624,7 @@ std::string FeatureClassifier::Report::summary() const
     s << units << " units: " << keptModelData << " kept from the model data, " << byRule << " by rules, "
       << byAppearance << " by appearance (" << appearanceGroups << " groups, " << appearanceConflicts
       << " left generic by conflicting groups), " << unclassified << " unclassified; " << featuresCreated
-      << " features created (" << featuresMerged << " drawables merged into their Geode's feature)";
+      << " features created (" << featuresMerged << " units merged into the feature of their object)";
     return s.str();
 }
 

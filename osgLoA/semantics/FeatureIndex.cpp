@@ -76,14 +76,20 @@ unsigned FeatureIndex::numberUnnumbered()
 
 std::vector<unsigned> FeatureIndex::duplicateIds() const
 {
-    std::set<unsigned> seen, dup;
+    std::map<unsigned, const Feature*> seen; // one Feature on several nodes is no duplicate
+    std::set<unsigned> dup;
     for (const Entry& e : _entries)
-        if (!seen.insert(e.feature->getId()).second) dup.insert(e.feature->getId());
+    {
+        auto it = seen.emplace(e.feature->getId(), e.feature.get()).first;
+        if (it->second != e.feature.get()) dup.insert(e.feature->getId());
+    }
     return std::vector<unsigned>(dup.begin(), dup.end());
 }
 
 void FeatureIndex::updateBounds()
 {
+    // A Feature on several nodes (one object of several pieces) gets the union of their boxes.
+    std::map<const Feature*, osg::BoundingBox> boxes;
     for (Entry& e : _entries)
     {
         osg::ref_ptr<osg::Node> node;
@@ -94,8 +100,12 @@ void FeatureIndex::updateBounds()
         osg::Matrix toWorld = osg::computeLocalToWorld(parentPath);
         cbv.pushMatrix(toWorld);
         node->accept(cbv);
-        const osg::BoundingBox& b = cbv.getBoundingBox();
-        e.feature->setBound(osg::BoundingBoxf(b._min, b._max));
+        boxes[e.feature.get()].expandBy(cbv.getBoundingBox());
+    }
+    for (Entry& e : _entries)
+    {
+        auto it = boxes.find(e.feature.get());
+        if (it != boxes.end()) e.feature->setBound(osg::BoundingBoxf(it->second._min, it->second._max));
     }
 }
 
@@ -120,9 +130,11 @@ FeatureIndex::Counts FeatureIndex::counts(bool topLevelOnly) const
     Counts c;
     for (FeatureType t : kFeatureTypes)
         c.byType[t] = 0;
+    std::set<const Feature*> counted; // one Feature on several nodes counts once
     for (const Entry& e : _entries)
     {
         if (topLevelOnly && e.parent >= 0) continue;
+        if (!counted.insert(e.feature.get()).second) continue;
         ++c.byType[e.feature->getType()];
         ++c.total;
         if (e.feature->getLandmark()) ++c.landmarks;

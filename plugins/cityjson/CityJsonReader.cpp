@@ -4,6 +4,7 @@
 // was emitted and builds float osg::Geometry, object Groups and Features.
 #include "CityJsonReader.h"
 
+#include <osgLoA/semantics/CityObjectTypes>
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/semantics/FeatureIndex>
 
@@ -333,47 +334,19 @@ TypeMapping mapType(const std::string& cityType, const json& attributes)
 {
     using osgLoA::FeatureType;
     TypeMapping m;
-    static const std::set<std::string> buildings = {
-        "Building",          "BuildingPart", "BuildingInstallation", "BuildingConstructiveElement",
-        "BuildingFurniture", "BuildingRoom", "BuildingStorey",       "BuildingUnit"};
-    static const std::set<std::string> streets = {"Road",
-                                                  "Railway",
-                                                  "TransportSquare",
-                                                  "Tunnel",
-                                                  "TunnelPart",
-                                                  "TunnelInstallation",
-                                                  "TunnelConstructiveElement",
-                                                  "TunnelHollowSpace",
-                                                  "TunnelFurniture"};
-    static const std::set<std::string> generics = {"Bridge",
-                                                   "BridgePart",
-                                                   "BridgeInstallation",
-                                                   "BridgeConstructiveElement",
-                                                   "BridgeRoom",
-                                                   "BridgeFurniture",
-                                                   "CityFurniture",
-                                                   "GenericCityObject",
-                                                   "OtherConstruction",
-                                                   "CityObjectGroup"};
-    if (buildings.count(cityType))
+    // The shared table (osgLoA::CityObjectTypes, docs/classification.md); "+Extension" and
+    // unknown types stay unclassified for the rules.
+    const osgLoA::CityObjectTypes::Entry* e = osgLoA::CityObjectTypes::find(cityType);
+    if (!e)
     {
-        m.type = FeatureType::Building;
-        if (cityType == "BuildingPart") m.subType = "part";
+        m.source = osgLoA::Feature::UNCLASSIFIED;
+        return m;
     }
-    else if (streets.count(cityType))
+    m.type = e->type;
+    m.subType = e->subType;
+    // Refinements from the object's own attributes.
+    if (cityType == "WaterBody")
     {
-        m.type = FeatureType::Street;
-        if (cityType == "Road") m.subType = "road";
-        if (cityType == "Railway") m.subType = "railway";
-    }
-    else if (cityType == "Waterway")
-    {
-        m.type = FeatureType::Water;
-        m.subType = "waterway";
-    }
-    else if (cityType == "WaterBody")
-    {
-        m.type = FeatureType::Water;
         std::string word;
         if (containsAny(classifyingText(attributes),
                         {"river", "lake", "sea", "canal", "pond", "stream", "ocean", "reservoir", "harbour"},
@@ -382,11 +355,9 @@ TypeMapping mapType(const std::string& cityType, const json& attributes)
     }
     else if (cityType == "PlantCover" || cityType == "SolitaryVegetationObject")
     {
-        m.type = FeatureType::Green;
-        m.subType = firstWord(attributes);
+        const std::string word = firstWord(attributes);
+        if (!word.empty()) m.subType = word;
     }
-    else if (cityType == "TINRelief")
-        m.type = FeatureType::Terrain;
     else if (cityType == "LandUse")
     {
         const std::string text = classifyingText(attributes);
@@ -397,10 +368,10 @@ TypeMapping mapType(const std::string& cityType, const json& attributes)
             m.type = FeatureType::Green;
         else if (containsAny(text, {"water", "river", "lake"}))
             m.type = FeatureType::Water;
-        m.subType = firstWord(attributes);
+        if (m.type != e->type) m.subType.clear(); // "land-use" only names ground of some use
+        const std::string word = firstWord(attributes);
+        if (!word.empty()) m.subType = word;
     }
-    else if (!generics.count(cityType))
-        m.source = osgLoA::Feature::UNCLASSIFIED; // "+Extension" or unknown
     return m;
 }
 

@@ -13,11 +13,11 @@
 // features the model data already carries keep their type; rules and the appearance fallback
 // type the rest) and wrapped in one osgLoA::LoANode carrying the scenario.
 //
-// The option string is split at white space into tokens. "scenario=NAME|FILE" and
-// "rules=FILE" are this plugin's and are removed; every other token is passed on, in order, to
-// the readers of the models. A passed-on token whose key the model's reader does not declare
-// (ReaderWriter::supportedOptions) is reported with OSG_WARN, so that a misspelt key is never
-// silently ignored; it is passed on all the same.
+// The option string is split at white space into tokens. "scenario=NAME|FILE",
+// "rules=FILE" (added before the built-in rules) and "rules-only=FILE" are this plugin's and are removed;
+// every other token is passed on, in order, to the readers of the models. A passed-on token whose key the
+// model's reader does not declare (ReaderWriter::supportedOptions) is reported with OSG_WARN, so that a
+// misspelt key is never silently ignored; it is passed on all the same.
 #include <osgLoA/semantics/ClassificationRuleSet>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureIndex>
@@ -40,7 +40,7 @@
 
 namespace
 {
-const char* const kOwnKeys[] = {"scenario", "rules"};
+const char* const kOwnKeys[] = {"scenario", "rules", "rules-only"};
 const char* const kFileKeys[] = {"models", "scenario", "rules", "options", "description"};
 
 /** A read failure with the ReadResult status it becomes at the plugin boundary. */
@@ -94,8 +94,9 @@ std::size_t editDistance(const std::string& a, const std::string& b)
 /** What the option string asks of this plugin, and what it passes on to the model readers. */
 struct LoaOptions
 {
-    std::string scenario; ///< "" when not given
-    std::string rules;    ///< "" when not given
+    std::string scenario;   ///< "" when not given
+    std::string rules;      ///< "" when not given
+    bool rulesOnly = false; ///< rules-only=FILE: FILE's rules instead of the built-in ones
     std::vector<std::string> passOn;
 
     static LoaOptions parse(const osgDB::Options* options)
@@ -112,7 +113,10 @@ struct LoaOptions
                 throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
                                "option '" + token + "' needs a value (" + key + "=...)"};
             else
+            {
                 (key == "scenario" ? o.scenario : o.rules) = token.substr(key.size() + 1);
+                if (key != "scenario") o.rulesOnly = key == "rules-only";
+            }
         }
         return o;
     }
@@ -218,12 +222,14 @@ osg::ref_ptr<osgLoA::UsageScenario> loadScenario(const std::string& nameOrPath, 
     return s;
 }
 
-osg::ref_ptr<osgLoA::ClassificationRuleSet> loadRules(const std::string& path, const std::string& context)
+osg::ref_ptr<osgLoA::ClassificationRuleSet> loadRules(const std::string& path, bool rulesOnly,
+                                                      const std::string& context)
 {
-    if (path.empty()) return osgLoA::ClassificationRuleSet::createDefault();
     try
     {
-        return osgLoA::ClassificationRuleSet::read(path);
+        // As every tool classifies: the file's rules before the built-in ones (or alone).
+        return osgLoA::ClassificationRuleSet::assemble(
+            path.empty() ? std::vector<std::string>() : std::vector<std::string>{path}, rulesOnly, false);
     }
     catch (const std::exception& e)
     {
@@ -344,7 +350,8 @@ public:
         supportsOption("scenario=NAME|FILE",
                        "usage scenario: a library name (default 'distance') or a .osgt/.osgb/.osgx file");
         supportsOption("rules=FILE",
-                       "classification rule set (.osgt/.osgb/.osgx); default: the built-in rules");
+                       "classification rule set (.osgt/.osgb/.osgx) tried before the built-in rules");
+        supportsOption("rules-only=FILE", "classification rule set used instead of the built-in rules");
     }
     const char* className() const override { return "osgLoA level-of-abstraction pseudo-loader"; }
 
@@ -396,6 +403,7 @@ private:
         // The option string overrides what a .loa file says.
         if (!opts.scenario.empty()) request.scenario = opts.scenario;
         if (!opts.rules.empty()) request.rules = opts.rules;
+        const bool rulesOnly = !opts.rules.empty() && opts.rulesOnly;
 
         // Options for the model readers: this plugin's keys removed, the .loa file's first.
         osg::ref_ptr<Options> modelOptions =
@@ -404,7 +412,8 @@ private:
         if (!request.directory.empty()) modelOptions->getDatabasePathList().push_front(request.directory);
         warnAboutUndeclaredKeys(opts, request.models, request.context);
 
-        osg::ref_ptr<osgLoA::ClassificationRuleSet> rules = loadRules(request.rules, request.context);
+        osg::ref_ptr<osgLoA::ClassificationRuleSet> rules =
+            loadRules(request.rules, rulesOnly, request.context);
         osg::ref_ptr<osgLoA::UsageScenario> scenario;
         if (!request.scenario.empty()) scenario = loadScenario(request.scenario, request.context);
 

@@ -25,10 +25,13 @@ REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRule, new osgLoA::ClassificationRul
     BEGIN_ENUM_BY_NAME_SERIALIZER(Syntax, GLOB);
         ADD_ENUM_VALUE(GLOB);
         ADD_ENUM_VALUE(REGEX);
+        ADD_ENUM_VALUE(TOKENS);
     END_ENUM_SERIALIZER();
     ADD_STRING_SERIALIZER(Pattern, "");
     ADD_BOOL_SERIALIZER(CaseSensitive, false);
     osgLoA::addFeatureTypeSerializer<MyClass>(wrapper, "Type", &MyClass::getType, &MyClass::setType);
     ADD_STRING_SERIALIZER(SubType, "");
+    ADD_BOOL_SERIALIZER(Inheritable, true);
+    ADD_BOOL_SERIALIZER(OverridesModelData, false);
 }
 // clang-format on

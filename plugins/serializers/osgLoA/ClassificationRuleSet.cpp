@@ -48,5 +48,8 @@ REGISTER_OBJECT_WRAPPER(osgLoA_ClassificationRuleSet, new osgLoA::Classification
     ADD_BOOL_SERIALIZER(OverrideModelData, false);
     ADD_BOOL_SERIALIZER(UseAppearance, true);
     ADD_FLOAT_SERIALIZER(AppearanceThreshold, 10.0f);
+    ADD_BOOL_SERIALIZER(GroupObjects, true);
+    ADD_STRING_SERIALIZER(MergeTouchingTypes, "building");
+    ADD_FLOAT_SERIALIZER(MergeTolerance, 0.05f);
 }
 // clang-format on
