@@ -75,17 +75,24 @@ TEST(LoANodeTest, BindsLazilyAndEvaluatesForAnEye)
     osg::ref_ptr<LoANode> node = new LoANode;
     node->addChild(box(1, FeatureType::Building, osg::Vec3(195, -5, 0), osg::Vec3(205, 5, 10)).get());
     node->setScenario(ScenarioLibrary::createBuiltin("distance").get());
-    // distance scenario, view distance 150..900; eye at (0,0,5): distance 200 to the centre
-    // (200,0,5) -> interest 1 - 50/750 = 0.933333 -> photorealistic only (fade-in 0.6..0.75 done).
+    // distance scenario: view distance 0.25 D .. 1.5 D, D the eye's distance to the centre of
+    // the features' box, here the building's centre (200,0,5); eye at (0,0,5): distance 200 =
+    // D -> interest 1 - 0.75/1.25 = 0.4 -> abstract only (its fade-in 0.25..0.4 done, the
+    // photorealistic fade-in 0.6..0.75 not begun, the cartographic fade-out 0.25..0.4 done).
     node->evaluate(osg::Vec3d(0, 0, 5));
     const ScenarioEvaluator* e = node->getEvaluator();
     ASSERT_TRUE(e->isBound());
     ASSERT_EQ(e->features().size(), 1u);
     const ScenarioEvaluator::Match* m = e->matchesOf(e->features()[0]);
     ASSERT_EQ(e->features()[0].numMatches, 3u);
-    EXPECT_NEAR(m[0].interest, 0.933333f, 1e-5f);
-    EXPECT_EQ(node->getScenario()->getConfigurations()[m[0].configuration]->getStyle(), "photorealistic");
-    EXPECT_EQ(m[0].weight, 1.0f);
+    EXPECT_NEAR(m[0].interest, 0.4f, 1e-5f);
+    EXPECT_EQ(node->getScenario()->getConfigurations()[m[1].configuration]->getStyle(), "abstract");
+    EXPECT_EQ(m[0].weight, 0.0f);
+    EXPECT_EQ(m[1].weight, 1.0f);
+    // The bound (fitted) metric: near 0.25 x 200 = 50 m, far 1.5 x 200 = 300 m.
+    const SaliencyMetric* fitted = e->getScenario()->getConfigurations()[0]->getMetrics()[0].get();
+    EXPECT_NEAR(fitted->getNear(), 50.0, 1e-9);
+    EXPECT_NEAR(fitted->getFar(), 300.0, 1e-9);
     EXPECT_EQ(node->getBindError(), "");
     // A child inserted, replaced or removed is picked up at the next evaluation.
     node->insertChild(0, box(2, FeatureType::Water, osg::Vec3(0, 0, 0), osg::Vec3(10, 10, 1)).get());

@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace
@@ -111,8 +113,12 @@ TEST(LoaScenarioTest, ShowRouteHasThePolyline)
 {
     std::string out;
     ASSERT_EQ(scenario("show route", out), 0) << out;
-    EXPECT_TRUE(contains(out, "route: polyline, radius 10, 6 vertices: -480,-330; -160,-330;")) << out;
-    EXPECT_TRUE(contains(out, "region near 30 far 150 weight 1")) << out;
+    // The route is fitted to each model: along its longest street chain, sizes in units of S.
+    EXPECT_TRUE(contains(out, "route: polyline placed longest-street, radius 0.01 S (vertices: the model's "
+                              "longest street chain)"))
+        << out;
+    EXPECT_TRUE(contains(out, "region near 0.03 S far 0.14 S weight 1")) << out;
+    EXPECT_TRUE(contains(out, "fitted to each model: S is the scene's size")) << out;
     EXPECT_TRUE(contains(out, "fade-in: ")) << out;
     EXPECT_TRUE(contains(out, "fade-out: none (1..1)")) << out;
     EXPECT_TRUE(contains(out, "validation: ok")) << out;
@@ -122,18 +128,19 @@ TEST(LoaScenarioTest, ShowRouteHasThePolyline)
     ASSERT_EQ(s["regions"].size(), 1u);
     const json& r = s["regions"][0];
     EXPECT_EQ(r["shape"], "polyline");
-    EXPECT_EQ(r["radius"], 10);
-    ASSERT_EQ(r["vertices"].size(), 6u);
-    EXPECT_EQ(r["vertices"][0], json::array({-480, -330}));
-    EXPECT_EQ(r["vertices"][5], json::array({460, 330}));
+    EXPECT_EQ(r["placement"], "longest-street");
+    EXPECT_EQ(r["scene-scale"], true);
+    EXPECT_EQ(r["radius"], 0.01);
+    EXPECT_TRUE(r["vertices"].empty());
+    EXPECT_EQ(s["configurations"][0]["metrics"][0]["scale"], "scene");
     ASSERT_EQ(s["configurations"].size(), 4u);
     const json& c = s["configurations"][0];
     EXPECT_EQ(c["name"], "photorealistic-objects");
     EXPECT_EQ(c["types"], json::array({"generic", "building"})); // in FeatureType enum order
     EXPECT_EQ(c["interpolation"], "object");
     EXPECT_EQ(c["metrics"][0]["kind"], "region");
-    EXPECT_EQ(c["metrics"][0]["near"], 30);
-    EXPECT_EQ(c["metrics"][0]["far"], 150);
+    EXPECT_EQ(c["metrics"][0]["near"], 0.03);
+    EXPECT_EQ(c["metrics"][0]["far"], 0.14);
     EXPECT_EQ(c["fade-in"].size(), 2u);
     EXPECT_EQ(c["fade-out"], json::array({1, 1}));
     EXPECT_EQ(s["configurations"][1]["interpolation"], "fragment");
@@ -511,11 +518,113 @@ TEST(LoaScenarioTest, DistanceScenarioFavoursNearerBuildings)
         if (c["name"] == "photorealistic-objects") metric = &c["metrics"][0];
     ASSERT_NE(metric, nullptr);
     ASSERT_EQ((*metric)["kind"], "view-distance");
-    const double nearValue = (*metric)["near"], farValue = (*metric)["far"];
+    ASSERT_EQ((*metric)["scale"],
+              "view"); // near and far in units of D, the eye's distance to the scene centre
+    const json& c = e["scene"]["centre"];
+    const double D = std::sqrt(std::pow(e["eye"][0].get<double>() - c[0].get<double>(), 2) +
+                               std::pow(e["eye"][1].get<double>() - c[1].get<double>(), 2) +
+                               std::pow(e["eye"][2].get<double>() - c[2].get<double>(), 2));
+    EXPECT_NEAR(e["scene"]["view-distance"].get<double>(), D, 1e-6 * D);
+    const double nearValue = (*metric)["near"].get<double>() * D,
+                 farValue = (*metric)["far"].get<double>() * D;
     ASSERT_LT(nearValue, farValue);
     for (const auto& b : buildings)
     {
         const double expected = std::clamp(1.0 - (b.first - nearValue) / (farValue - nearValue), 0.0, 1.0);
         EXPECT_NEAR(b.second, expected, 1e-4) << b.first;
     }
+}
+
+namespace
+{
+/** Each library scenario, explained from the oblique camera on `model`: at least two styles
+ *  with a non-zero weight among the features in view (a transition to look at), and no
+ *  warning. Returns the styles seen per scenario for the message. */
+void expectTransitionsOn(const std::string& model)
+{
+    for (const std::string& name : osgLoA::ScenarioLibrary::builtinNames())
+    {
+        const json e = scenarioJson("explain " + name + " --model " + quote(model) +
+                                    " --camera oblique --features 0 --json");
+        ASSERT_TRUE(e.is_object()) << name << " on " << model;
+        std::map<std::string, unsigned> styles;
+        for (const json& f : e["features"])
+            for (const json& m : f["matches"])
+                if (m["weight"].get<double>() > 0.01) ++styles[m["style"].get<std::string>()];
+        std::string seen;
+        for (const auto& kv : styles)
+            seen += kv.first + " " + std::to_string(kv.second) + "; ";
+        EXPECT_GE(styles.size(), 2u) << name << " on " << model << ": " << seen;
+        EXPECT_TRUE(e["warnings"].empty()) << name << " on " << model << ": " << e["warnings"].dump();
+    }
+}
+
+std::string testScene(const std::string& name, const std::string& piece)
+{
+    const std::string data = std::string(LOA_SOURCE_DIR) + "/data/";
+    return osgDB::fileExists(data + "cache/" + piece) ? data + "test-scenes/" + name + ".osgt"
+                                                      : std::string();
+}
+} // namespace
+
+// Issue 18 item 3: the library scenarios fit any scene (regions at the scene's centre or along
+// its longest street chain, the focus on its tallest landmark, distance bands scaled to the
+// scene and the camera). Before, on anything but the demo city the regions fell in an empty
+// corner and blueprint focused on nothing.
+TEST(LoaScenarioTest, EveryLibraryScenarioShowsATransitionOnTheDemoCity)
+{
+    expectTransitionsOn("demo.loacity");
+}
+
+TEST(LoaScenarioTest, EveryLibraryScenarioShowsATransitionOnTorcsStreet1)
+{
+    const std::string model = testScene("torcs-street-1", "torcs-data/street-1/street-1.ac");
+    if (model.empty()) GTEST_SKIP() << "TORCS street-1 is not extracted: run scripts/fetch-test-data";
+    expectTransitionsOn(model);
+}
+
+TEST(LoaScenarioTest, EveryLibraryScenarioShowsATransitionOnTheOpenCityBlock)
+{
+    const std::string model = testScene("opencity-block", "opencity-data/hotel/hotel.ac");
+    if (model.empty()) GTEST_SKIP() << "the OpenCity block is not extracted: run scripts/fetch-test-data";
+    expectTransitionsOn(model);
+}
+
+// A user's own route from a GeoJSON file (scene coordinates: the model is not geo-referenced).
+TEST(LoaScenarioTest, SetAddsRegionsFromAGeoJsonFile)
+{
+    const std::string dir = loatest::freshDirectory("LoaScenarioTestGeoJson");
+    const std::string file = dir + "/walk.osgt";
+    std::string out;
+    ASSERT_EQ(scenario("create " + quote(file) + " --from route", out), 0) << out;
+    {
+        std::ofstream g(dir + "/walk.geojson");
+        g << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "my walk"},
+              "geometry": {"type": "LineString", "coordinates": [[-100, 0], [0, 50], [120, 50]]}}]})";
+    }
+    ASSERT_EQ(
+        scenario("set " + quote(file) + " clear-regions add-regions " + quote(dir + "/walk.geojson") + " 12",
+                 out),
+        0)
+        << out;
+    EXPECT_NE(out.find("added 1 region(s)"), std::string::npos) << out;
+    const json s = scenarioJson("show " + quote(file) + " --json");
+    ASSERT_EQ(s["regions"].size(), 1u);
+    const json& r = s["regions"][0];
+    EXPECT_EQ(r["name"], "my walk");
+    EXPECT_EQ(r["shape"], "polyline");
+    EXPECT_EQ(r["placement"], "absolute");
+    EXPECT_EQ(r["radius"], 12);
+    EXPECT_EQ(r["vertices"],
+              json::array({json::array({-100, 0}), json::array({0, 50}), json::array({120, 50})}));
+    // A file without geometry is refused, and the scenario file stays as it was.
+    {
+        std::ofstream g(dir + "/empty.geojson");
+        g << R"({"type": "FeatureCollection", "features": []})";
+    }
+    const std::string before = readBytes(file);
+    EXPECT_EQ(scenario("set " + quote(file) + " add-regions " + quote(dir + "/empty.geojson"), out), 1)
+        << out;
+    EXPECT_NE(out.find("no point, line or polygon"), std::string::npos) << out;
+    EXPECT_EQ(readBytes(file), before);
 }

@@ -34,6 +34,28 @@ using namespace osgLoA;
 
 namespace
 {
+/** The route scenario as it was before scenarios fitted themselves to the scene (absolute
+ *  vertices, radius 10, region ramp 30..150): every kind of field, with plain numbers. */
+osg::ref_ptr<UsageScenario> absoluteRoute()
+{
+    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::createBuiltin("route");
+    s->setDescription("Route highlighting, absolute (a test fixture)");
+    RegionOfInterest& r = *s->getRegions()[0];
+    r.setPlacement(RegionOfInterest::ABSOLUTE);
+    r.setSceneScale(false);
+    r.setVertices(
+        {{-480.0, -330.0}, {-160.0, -330.0}, {-160.0, 40.0}, {200.0, 40.0}, {200.0, 330.0}, {460.0, 330.0}});
+    r.setRadius(10.0);
+    for (const auto& c : s->getConfigurations())
+        for (const auto& m : c->getMetrics())
+        {
+            m->setScale(SaliencyMetric::ABSOLUTE);
+            m->setNear(30.0);
+            m->setFar(150.0);
+        }
+    return s;
+}
+
 typedef SaliencyMetric M;
 typedef TransitionConfiguration TC;
 typedef RegionOfInterest R;
@@ -142,6 +164,7 @@ void expectSameMetric(const M& a, const M& b)
     EXPECT_DOUBLE_EQ(a.getNear(), b.getNear());
     EXPECT_DOUBLE_EQ(a.getFar(), b.getFar());
     EXPECT_DOUBLE_EQ(a.getWeight(), b.getWeight());
+    EXPECT_EQ(a.getScale(), b.getScale());
 }
 
 void expectSameRegion(const R& a, const R& b)
@@ -154,7 +177,10 @@ void expectSameRegion(const R& a, const R& b)
         EXPECT_DOUBLE_EQ(a.getVertices()[i].x(), b.getVertices()[i].x()) << i;
         EXPECT_DOUBLE_EQ(a.getVertices()[i].y(), b.getVertices()[i].y()) << i;
     }
-    EXPECT_EQ(a.getRadius(), b.getRadius());
+    EXPECT_DOUBLE_EQ(a.getRadius(), b.getRadius());
+    EXPECT_EQ(a.getPlacement(), b.getPlacement());
+    EXPECT_EQ(a.getPlacementFeature(), b.getPlacementFeature());
+    EXPECT_EQ(a.getSceneScale(), b.getSceneScale());
 }
 
 void expectSameConfiguration(const TC& a, const TC& b)
@@ -181,6 +207,7 @@ void expectSameScenario(const UsageScenario& a, const UsageScenario& b)
     EXPECT_EQ(a.getName(), b.getName());
     EXPECT_EQ(a.getDescription(), b.getDescription());
     EXPECT_EQ(a.getFocusFeature(), b.getFocusFeature());
+    EXPECT_EQ(a.getFocusTallestLandmark(), b.getFocusTallestLandmark());
     ASSERT_EQ(bool(a.getInterest()), bool(b.getInterest()));
     if (a.getInterest())
     {
@@ -445,7 +472,7 @@ std::string describe(const ReadOutcome& o)
 std::string routeText(const std::string& dir)
 {
     const std::string path = dir + "/route-source.osgt";
-    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), path);
+    ScenarioLibrary::writeFile(*absoluteRoute(), path);
     return fileBytes(path);
 }
 
@@ -480,7 +507,7 @@ TEST(ScenarioSerializationTest, MalformedFilesThrowScenarioErrorNamingTheFile)
     writeBytes(dir + "/truncated.osgt", text.substr(0, half));
     expectScenarioError(dir + "/truncated.osgt", "truncated at a line end");
     // Truncated binary file.
-    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgb");
+    ScenarioLibrary::writeFile(*absoluteRoute(), dir + "/route.osgb");
     const std::string binary = fileBytes(dir + "/route.osgb");
     writeBytes(dir + "/truncated.osgb", binary.substr(0, binary.size() / 2));
     expectScenarioError(dir + "/truncated.osgb", "truncated binary");
@@ -509,7 +536,7 @@ TEST(ScenarioSerializationTest, MalformedFilesThrowScenarioErrorNamingTheFile)
     ASSERT_TRUE(osgDB::writeNodeFile(*bare, dir + "/bare-node.osgt"));
     expectScenarioError(dir + "/bare-node.osgt", "a LoANode without a scenario");
     // A plain UsageScenario object (the files' earlier form) still reads.
-    ASSERT_TRUE(osgDB::writeObjectFile(*ScenarioLibrary::createBuiltin("route"), dir + "/object.osgt"));
+    ASSERT_TRUE(osgDB::writeObjectFile(*absoluteRoute(), dir + "/object.osgt"));
     EXPECT_EQ(readInChild(dir + "/object.osgt").kind, ReadOutcome::READ);
     // Missing file, and a name that is not a scenario file.
     expectScenarioError(dir + "/missing.osgt", "missing file");
@@ -676,7 +703,7 @@ TEST(ScenarioSerializationTest, MalformedValuesInTextFilesNameTheProblem)
     expectErrorSaying(dir + "/vertices-at-limit.osgt", "cannot read scenario file");
 
     // The same checks read .osgx.
-    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/route.osgx");
+    ScenarioLibrary::writeFile(*absoluteRoute(), dir + "/route.osgx");
     const std::string xml = fileBytes(dir + "/route.osgx");
     ASSERT_EQ(readInChild(dir + "/route.osgx").kind, ReadOutcome::READ);
     writeBytes(dir + "/kind.osgx",
@@ -699,7 +726,7 @@ TEST(ScenarioSerializationTest, MalformedValuesInBinaryFilesNameTheProblem)
     // first vertex.
     const std::string marker = "count follows @@";
     const double nearValue = 123.456789, vertexX = -4321.0987654;
-    osg::ref_ptr<UsageScenario> s = ScenarioLibrary::createBuiltin("route");
+    osg::ref_ptr<UsageScenario> s = absoluteRoute();
     s->setDescription(marker);
     s->setInterest(nullptr);
     s->getConfigurations()[0]->getMetrics()[0]->setNear(nearValue);
@@ -769,7 +796,7 @@ TEST(ScenarioSerializationTest, LoadByNameByPathAndUnknownNames)
     EXPECT_EQ(s->getName(), "distance");
     EXPECT_EQ(origin, std::string(LOA_SOURCE_DIR) + "/data/scenarios/distance.osgt");
     // By path; a file without a name gets its base name.
-    osg::ref_ptr<UsageScenario> unnamed = ScenarioLibrary::createBuiltin("route");
+    osg::ref_ptr<UsageScenario> unnamed = absoluteRoute();
     unnamed->setName("");
     ScenarioLibrary::writeFile(*unnamed, dir + "/my-route.osgb");
     s = ScenarioLibrary::load(dir + "/my-route.osgb", &origin);
@@ -819,11 +846,11 @@ TEST(ScenarioSerializationTest, WriteFileIsAtomic)
     // Make the write fail: a file where AtomicFile wants its temporary directory.
     const std::string blocker = dir + "/.scenario.osgt.tmp-" + std::to_string(::getpid());
     writeBytes(blocker, "in the way");
-    EXPECT_THROW(ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), path), ScenarioError);
+    EXPECT_THROW(ScenarioLibrary::writeFile(*absoluteRoute(), path), ScenarioError);
     EXPECT_EQ(fileBytes(path), before);
     std::remove(blocker.c_str());
     // The same write succeeds now, and replaces the file whole.
-    ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), path);
+    ScenarioLibrary::writeFile(*absoluteRoute(), path);
     EXPECT_NE(fileBytes(path), before);
     EXPECT_EQ(ScenarioLibrary::readFile(path)->getName(), "route");
     std::vector<std::string> left;
@@ -833,7 +860,7 @@ TEST(ScenarioSerializationTest, WriteFileIsAtomic)
     // Not a scenario file name.
     try
     {
-        ScenarioLibrary::writeFile(*ScenarioLibrary::createBuiltin("route"), dir + "/scenario.txt");
+        ScenarioLibrary::writeFile(*absoluteRoute(), dir + "/scenario.txt");
         ADD_FAILURE() << "no exception";
     }
     catch (const ScenarioError& e)

@@ -213,12 +213,12 @@ TEST(UsageScenarioTest, DeepCopyCopiesEverything)
     EXPECT_EQ(d->getRegions()[0]->getRadius(), s->getRegions()[0]->getRadius());
     // Editing the copy leaves the original alone.
     d->getConfigurations()[0]->setStyle("abstract");
-    d->getConfigurations()[0]->getMetrics()[0]->setNear(1.0);
+    d->getConfigurations()[0]->getMetrics()[0]->setNear(0.1);
     d->getRegions()[0]->setRadius(99.0);
     d->getInterest()->setTypeInterest(FeatureType::Green, 0.9f);
     EXPECT_EQ(s->getConfigurations()[0]->getStyle(), "photorealistic");
-    EXPECT_EQ(s->getConfigurations()[0]->getMetrics()[0]->getNear(), 30.0);
-    EXPECT_EQ(s->getRegions()[0]->getRadius(), 10.0);
+    EXPECT_EQ(s->getConfigurations()[0]->getMetrics()[0]->getNear(), 0.03); // route: in units of S
+    EXPECT_EQ(s->getRegions()[0]->getRadius(), 0.01);
     EXPECT_FLOAT_EQ(s->getInterest()->getTypeInterest(FeatureType::Green), 0.3f);
     EXPECT_TRUE(d->validate().ok());
 }

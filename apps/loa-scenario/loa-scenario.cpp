@@ -6,6 +6,7 @@
 
 #include <osgLoA/Version>
 #include <osgLoA/city/CityCameras>
+#include <osgLoA/interest/RegionFile>
 #include <osgLoA/semantics/ClassificationRuleSet>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/styles/GraphicStyleCatalog>
@@ -23,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 namespace
@@ -55,13 +57,14 @@ commands:
       every feature type, style photorealistic, object interpolation, one feature-interest
       metric (valid as it is; edit it with `set`). The scenario's name is FILE's base name.
       Refuses to overwrite an existing FILE without --force.
-  set FILE EDIT... [--configuration NAME] [--force]
+  set FILE EDIT... [--configuration NAME] [--model MODEL] [--force]
       edits a scenario file in place (atomically), applying the edits in order, then
       validates: when the result has errors it prints them, leaves FILE unchanged and exits
       with status 1, unless --force. Edits:
         scenario keys
           description=TEXT
-          focus=ID | focus=none           the focus object (a feature id) of focus metrics
+          focus=ID | tallest | none       the focus object of focus metrics: a feature id, or
+                                          the tallest landmark of the model it is bound to
           interest.TYPE=V | none          interest override for a feature type (building,
                                           street, water, green, terrain, generic), V in [0,1]
           interest.ID=V | none            interest override for one feature id
@@ -83,9 +86,13 @@ commands:
           combination=weighted-mean|minimum|maximum
           fade-in=BEGIN:END               fade-in interval over interest (BEGIN alone or
           fade-out=BEGIN:END              BEGIN:BEGIN: a hard step; fade-out=1:1: none)
-          metric.KIND=NEAR:FAR[:WEIGHT]   adds or replaces the metric of KIND (view-distance,
+          metric.KIND=NEAR:FAR[:WEIGHT[:SCALE]]
+                                          adds or replaces the metric of KIND (view-distance,
                                           view-angle, region, focus, feature-interest);
-                                          feature-interest ignores NEAR:FAR (write 0:0 or on)
+                                          feature-interest ignores NEAR:FAR (write 0:0 or on);
+                                          SCALE: absolute (scene units, the default), scene
+                                          (times the model's size S) or view (times the
+                                          camera's distance to the model's centre)
           metric.KIND=none                removes it
         structure
           add-configuration NAME          appends a configuration like create's default
@@ -94,6 +101,12 @@ commands:
           add-region SHAPE "X,Y;X,Y;..." [RADIUS]
                                           SHAPE circles, polyline or polygon; RADIUS >= 0
                                           (default 0); named region-N
+          add-regions FILE [RADIUS]       every point (circles), line (polyline) and polygon of
+                                          a GeoJSON file (or any vector format GDAL reads),
+                                          named by its "name" property; with --model MODEL
+                                          of a geo-referenced model (CityJSON, OSM) the
+                                          coordinates are longitude/latitude (or the file's
+                                          own reference system), else scene x/y
           clear-regions
   explain SCENARIO [options]
       loads a model (default: the demo city, demo.loacity), classifies it, binds the scenario
@@ -282,8 +295,21 @@ std::string regionText(const RegionOfInterest& r)
 {
     std::ostringstream o;
     o << (r.getName().empty() ? std::string("(unnamed)") : r.getName()) << ": "
-      << RegionOfInterest::toString(r.getShape()) << ", radius " << num(r.getRadius(), 12) << ", "
-      << r.getVertices().size() << " vertices:";
+      << RegionOfInterest::toString(r.getShape());
+    if (r.getPlacement() != RegionOfInterest::ABSOLUTE)
+    {
+        o << " placed " << RegionOfInterest::toString(r.getPlacement());
+        if (r.getPlacement() == RegionOfInterest::FEATURE)
+            o << " "
+              << (r.getPlacementFeature() ? std::to_string(r.getPlacementFeature())
+                                          : std::string("(tallest)"));
+    }
+    o << ", radius " << num(r.getRadius(), 12) << (r.getSceneScale() ? " S" : "");
+    if (r.getPlacement() == RegionOfInterest::LONGEST_STREET)
+        return o.str() + " (vertices: the model's longest street chain)";
+    o << ", " << r.getVertices().size()
+      << (r.getPlacement() != RegionOfInterest::ABSOLUTE ? " vertex offsets" : " vertices")
+      << (r.getSceneScale() ? " (times S)" : "") << ":";
     std::string sep = " ";
     for (const osg::Vec2d& v : r.getVertices())
         o << sep << num(v.x(), 12) << "," << num(v.y(), 12), sep = "; ";
@@ -294,7 +320,12 @@ std::string metricText(const SaliencyMetric& m)
 {
     std::string s = SaliencyMetric::toString(m.getKind());
     if (m.getKind() != SaliencyMetric::FEATURE_INTEREST)
-        s += " near " + num(m.getNear(), 12) + " far " + num(m.getFar(), 12);
+    {
+        const std::string unit = m.getScale() == SaliencyMetric::SCENE  ? " S"
+                                 : m.getScale() == SaliencyMetric::VIEW ? " D"
+                                                                        : "";
+        s += " near " + num(m.getNear(), 12) + unit + " far " + num(m.getFar(), 12) + unit;
+    }
     return s + " weight " + num(m.getWeight(), 12);
 }
 
@@ -397,9 +428,20 @@ void showText(const Loaded& l)
                   << num(fi->getLandmarkThreshold()) << "\n";
     }
     std::cout << "focus: "
-              << (s.getFocusFeature() ? "feature " + std::to_string(s.getFocusFeature())
-                                      : std::string("none"))
+              << (s.getFocusFeature()           ? "feature " + std::to_string(s.getFocusFeature())
+                  : s.getFocusTallestLandmark() ? std::string("the tallest landmark (chosen per model)")
+                                                : std::string("none"))
               << "\n";
+    bool relative = s.getFocusFeature() == 0 && s.getFocusTallestLandmark();
+    for (const auto& r : s.getRegions())
+        relative = relative || (r.valid() && !r->isResolved());
+    for (const auto& c : s.getConfigurations())
+        for (const auto& m : c->getMetrics())
+            relative = relative || (m.valid() && m->getScale() != SaliencyMetric::ABSOLUTE);
+    if (relative)
+        std::cout << "fitted to each model: S is the scene's size (half the horizontal diagonal of its "
+                     "features' box), D the camera's distance to the scene centre (loa-scenario explain "
+                     "prints the values for a model)\n";
     std::cout << "regions: " << s.getRegions().size() << "\n";
     for (const auto& r : s.getRegions())
         if (r.valid()) std::cout << "  " << regionText(*r) << "\n";
@@ -472,13 +514,18 @@ void showJson(const Loaded& l)
     }
     else
         o << "null";
-    o << ",\n  \"focus\": " << s.getFocusFeature() << ",\n  \"regions\": [";
+    o << ",\n  \"focus\": " << s.getFocusFeature()
+      << ", \"focus-tallest-landmark\": " << (s.getFocusTallestLandmark() ? "true" : "false")
+      << ",\n  \"regions\": [";
     bool first = true;
     for (const auto& r : s.getRegions())
     {
         if (!r.valid()) continue;
         o << (first ? "\n    " : ",\n    ") << "{\"name\": " << jstr(r->getName())
           << ", \"shape\": " << jstr(RegionOfInterest::toString(r->getShape()))
+          << ", \"placement\": " << jstr(RegionOfInterest::toString(r->getPlacement()))
+          << ", \"placement-feature\": " << r->getPlacementFeature()
+          << ", \"scene-scale\": " << (r->getSceneScale() ? "true" : "false")
           << ", \"radius\": " << jnum(r->getRadius(), 12) << ", \"vertices\": [";
         bool firstVertex = true;
         for (const osg::Vec2d& v : r->getVertices())
@@ -513,6 +560,7 @@ void showJson(const Loaded& l)
         {
             if (!m.valid()) continue;
             o << (firstMetric ? "" : ", ") << "{\"kind\": " << jstr(SaliencyMetric::toString(m->getKind()))
+              << ", \"scale\": " << jstr(SaliencyMetric::toString(m->getScale()))
               << ", \"near\": " << jnum(m->getNear(), 12) << ", \"far\": " << jnum(m->getFar(), 12)
               << ", \"weight\": " << jnum(m->getWeight(), 12) << "}";
             firstMetric = false;
@@ -742,17 +790,23 @@ struct Editor
             return;
         }
         double nearValue = 0.0, farValue = 0.0, weight = 1.0;
+        SaliencyMetric::Scale scale = SaliencyMetric::ABSOLUTE;
         const std::vector<std::string> p = split(value, ':');
         const bool on = kind == SaliencyMetric::FEATURE_INTEREST && lower(value) == "on";
         if (!on)
         {
-            if (p.size() != 2 && p.size() != 3)
-                throw loa::UsageError(key + ": '" + value + "' is not NEAR:FAR or NEAR:FAR:WEIGHT");
+            if (p.size() < 2 || p.size() > 4)
+                throw loa::UsageError(key + ": '" + value +
+                                      "' is not NEAR:FAR, NEAR:FAR:WEIGHT or NEAR:FAR:WEIGHT:SCALE");
             nearValue = number(key, p[0]);
             farValue = number(key, p[1]);
-            if (p.size() == 3) weight = number(key, p[2]);
+            if (p.size() >= 3) weight = number(key, p[2]);
+            if (p.size() == 4 && !SaliencyMetric::parseScale(p[3], scale))
+                throw loa::UsageError(key + ": scale '" + p[3] + "' is not absolute, scene or view");
         }
-        c.addMetric(new SaliencyMetric(kind, nearValue, farValue, weight));
+        osg::ref_ptr<SaliencyMetric> metric = new SaliencyMetric(kind, nearValue, farValue, weight);
+        metric->setScale(scale);
+        c.addMetric(metric.get());
     }
 
     void set(const std::string& key, const std::string& value)
@@ -762,7 +816,10 @@ struct Editor
         if (key == "description")
             scenario.setDescription(value);
         else if (key == "focus")
-            scenario.setFocusFeature(lowered == "none" ? 0u : featureId(key, value));
+        {
+            scenario.setFocusTallestLandmark(lowered == "tallest");
+            scenario.setFocusFeature(lowered == "none" || lowered == "tallest" ? 0u : featureId(key, value));
+        }
         else if (key == "interest" && !haveConfiguration)
         {
             if (lowered != "none")
@@ -914,12 +971,14 @@ int cmdSet(loa::Args& args)
 {
     // First pass: the file and the options, so that edits can come in any order with them.
     std::vector<std::string> words;
-    std::string file, configurationName;
+    std::string file, configurationName, model;
     bool force = false, haveConfiguration = false;
     while (!args.empty())
     {
         const std::string a = args.next();
-        if (a == "--configuration")
+        if (a == "--model")
+            model = args.value(a);
+        else if (a == "--configuration")
         {
             if (haveConfiguration) throw loa::UsageError("set: --configuration given twice");
             configurationName = args.value(a), haveConfiguration = true;
@@ -959,6 +1018,32 @@ int cmdSet(loa::Args& args)
             ed.addConfiguration(need("a NAME"));
         else if (w == "remove-configuration")
             ed.removeConfiguration(need("a NAME"));
+        else if (w == "add-regions")
+        {
+            // A user's routes and regions from a GeoJSON (or other OGR) file, transformed to
+            // the model's frame when it is geo-referenced.
+            const std::string path = need("a FILE (GeoJSON, ...)");
+            double radius = 0.0;
+            if (i + 1 < words.size() && toNumber(words[i + 1], radius))
+                ++i;
+            else
+                radius = 0.0;
+            osg::ref_ptr<osg::Node> frame = model.empty() ? nullptr : loa::loadModel(model);
+            std::vector<osg::ref_ptr<RegionOfInterest>> regions;
+            try
+            {
+                regions = osgLoA::RegionFile::read(path, frame.get(), radius);
+            }
+            catch (const std::invalid_argument& e)
+            {
+                throw loa::UsageError(e.what());
+            }
+            for (const auto& r : regions)
+                scenario->addRegion(r.get());
+            std::cout << "added " << regions.size() << " region(s) from " << path
+                      << (frame.valid() ? " in the frame of " + model : std::string(" in scene coordinates"))
+                      << "\n";
+        }
         else if (w == "add-region")
         {
             const std::string shape = need("a SHAPE and vertices");
@@ -1092,12 +1177,14 @@ int cmdExplain(loa::Args& args)
                 b.valid() && frustum.contains(osg::BoundingBox(osg::Vec3(b._min), osg::Vec3(b._max))) ? 1 : 0;
         }
     }
+    node->evaluate(eye); // fits view-scaled metrics to this eye (ScenarioFitting)
     ev.evaluate(eye, visible.data());
+    const UsageScenario& fitted = *node->getFitting().getScenario();
     // Validation cannot know the model: a focus id the model lacks leaves the focus metric
     // without a focus (interest 0 everywhere).
     std::string focusWarning;
-    if (l.scenario->getFocusFeature() != 0 && ev.findFeature(l.scenario->getFocusFeature()) < 0)
-        focusWarning = "focus feature " + std::to_string(l.scenario->getFocusFeature()) +
+    if (fitted.getFocusFeature() != 0 && ev.findFeature(fitted.getFocusFeature()) < 0)
+        focusWarning = "focus feature " + std::to_string(fitted.getFocusFeature()) +
                        " is not in the model: focus metrics see no focus object (interest 0)";
     if (!focusWarning.empty()) std::cerr << "loa-scenario: warning: " << focusWarning << "\n";
 
@@ -1107,8 +1194,10 @@ int cmdExplain(loa::Args& args)
         double distance;
     };
     std::vector<Row> rows;
+    std::set<const osgLoA::Feature*> listedFeatures; // one Feature on several nodes: listed once
     for (std::size_t i = 0; i < states.size(); ++i)
-        if (states[i].visible && states[i].bound.valid())
+        if (states[i].visible && states[i].bound.valid() &&
+            listedFeatures.insert(entries[states[i].entry].feature.get()).second)
             rows.push_back({i, (states[i].bound.center() - eye).length()});
     std::stable_sort(rows.begin(), rows.end(),
                      [](const Row& a, const Row& b) { return a.distance < b.distance; });
@@ -1125,7 +1214,16 @@ int cmdExplain(loa::Args& args)
             << ",\n  \"model\": " << jstr(o.model) << ",\n  \"camera\": " << jstr(cameraText)
             << ",\n  \"eye\": " << jvec({eye.x(), eye.y(), eye.z()}, 12)
             << ",\n  \"center\": " << jvec({pose.center.x(), pose.center.y(), pose.center.z()}, 12)
-            << ",\n  \"frustum\": " << (o.all ? "false" : "true") << ",\n  \"warnings\": "
+            << ",\n  \"frustum\": " << (o.all ? "false" : "true")
+            << ",\n  \"fitting\": " << jsonStrings(node->getFitting().getNotes())
+            << ",\n  \"scene\": {\"centre\": "
+            << jvec({node->getFitting().getSceneCentre().x(), node->getFitting().getSceneCentre().y(),
+                     node->getFitting().getSceneCentre().z()},
+                    12)
+            << ", \"size\": " << jnum(node->getFitting().getSceneSize(), 12)
+            << ", \"view-distance\": " << jnum((eye - node->getFitting().getSceneCentre()).length(), 12)
+            << "}"
+            << ",\n  \"warnings\": "
             << jsonStrings(focusWarning.empty() ? std::vector<std::string>()
                                                 : std::vector<std::string>{focusWarning})
             << ",\n  \"features\": [";
@@ -1167,8 +1265,10 @@ int cmdExplain(loa::Args& args)
     else
     {
         std::cout << "scenario '" << l.scenario->getName() << "' (" << l.origin << ") on " << o.model << "\n"
-                  << "classifier: " << report.summary() << "\n"
-                  << cameraText << ": eye " << num(eye.x()) << "," << num(eye.y()) << "," << num(eye.z())
+                  << "classifier: " << report.summary() << "\n";
+        for (const std::string& note : node->getFitting().getNotes())
+            std::cout << "fitted: " << note << "\n";
+        std::cout << cameraText << ": eye " << num(eye.x()) << "," << num(eye.y()) << "," << num(eye.z())
                   << "\n"
                   << rows.size() << " of " << states.size() << " features "
                   << (o.all ? "(every feature, --all)" : "in the view frustum") << "; the " << listed

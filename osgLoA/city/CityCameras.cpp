@@ -24,7 +24,11 @@ public:
         {
             if (f->getType() == FeatureType::Building || f->getType() == FeatureType::Street)
             {
+                // In the scene's coordinates: the transforms above the feature apply.
                 osg::ComputeBoundsVisitor cbv;
+                const osg::NodePath& path = getNodePath();
+                osg::Matrix toScene = osg::computeLocalToWorld(osg::NodePath(path.begin(), path.end() - 1));
+                cbv.pushMatrix(toScene);
                 node.accept(cbv);
                 focus.expandBy(cbv.getBoundingBox());
                 if (f->getType() == FeatureType::Street && f->getSubType() == "major")

@@ -58,8 +58,38 @@ RegionOfInterest::RegionOfInterest(Shape shape, const Vertices& vertices, double
 }
 
 RegionOfInterest::RegionOfInterest(const RegionOfInterest& other, const osg::CopyOp& copyop)
-    : osg::Object(other, copyop), _shape(other._shape), _vertices(other._vertices), _radius(other._radius)
+    : osg::Object(other, copyop), _shape(other._shape), _vertices(other._vertices), _radius(other._radius),
+      _placement(other._placement), _placementFeature(other._placementFeature), _sceneScale(other._sceneScale)
 {
+}
+
+const char* RegionOfInterest::toString(Placement placement)
+{
+    switch (placement)
+    {
+    case SCENE_CENTRE:
+        return "scene-centre";
+    case FEATURE:
+        return "feature";
+    case LONGEST_STREET:
+        return "longest-street";
+    default:
+        return "absolute";
+    }
+}
+
+bool RegionOfInterest::parsePlacement(const std::string& name, Placement& placement)
+{
+    std::string n = name;
+    for (char& c : n)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (Placement p : {ABSOLUTE, SCENE_CENTRE, FEATURE, LONGEST_STREET})
+        if (n == toString(p))
+        {
+            placement = p;
+            return true;
+        }
+    return false;
 }
 
 void RegionOfInterest::setRadius(double radius)
@@ -110,7 +140,7 @@ std::string RegionOfInterest::validate() const
 {
     const std::string label =
         std::string(toString(_shape)) + (getName().empty() ? "" : " '" + getName() + "'");
-    const std::size_t need = minimumVertices(_shape);
+    const std::size_t need = _placement == LONGEST_STREET ? 0 : minimumVertices(_shape);
     if (_vertices.size() < need)
         return label + " has " + std::to_string(_vertices.size()) + " vertices; it needs at least " +
                std::to_string(need);
@@ -126,7 +156,7 @@ std::string RegionOfInterest::validate() const
             const osg::Vec2d& b = _vertices[(i + 1) % _vertices.size()];
             area2 += a.x() * b.y() - b.x() * a.y();
         }
-        if (std::fabs(area2) <= 1e-12) return label + " has zero area";
+        if (std::fabs(area2) <= 1e-12 && _placement != LONGEST_STREET) return label + " has zero area";
     }
     return std::string();
 }

@@ -82,7 +82,7 @@ SaliencyMetric::SaliencyMetric(Kind kind, double nearValue, double farValue, dou
 
 SaliencyMetric::SaliencyMetric(const SaliencyMetric& other, const osg::CopyOp& copyop)
     : osg::Object(other, copyop), _kind(other._kind), _near(other._near), _far(other._far),
-      _weight(other._weight), _tanNear(other._tanNear), _tanFar(other._tanFar)
+      _weight(other._weight), _scale(other._scale), _tanNear(other._tanNear), _tanFar(other._tanFar)
 {
 }
 
@@ -225,7 +225,11 @@ std::string SaliencyMetric::validate() const
         return s.str();
     }
     if (_kind == FEATURE_INTEREST) return std::string();
-    if (!std::isfinite(_near) || !std::isfinite(_far))
+    if (_scale != ABSOLUTE && _kind == VIEW_ANGLE)
+        s << "cannot be scaled to the scene or view (" << toString(_scale) << "): it measures degrees";
+    else if (_scale == VIEW && _kind == REGION)
+        s << "cannot follow the view: the distance map of the regions is built once per binding (use scene)";
+    else if (!std::isfinite(_near) || !std::isfinite(_far))
         s << "has a non-finite near or far value";
     else if (_near < 0.0)
         s << "has near " << _near << " < 0";
@@ -236,6 +240,33 @@ std::string SaliencyMetric::validate() const
     else
         return std::string();
     return s.str();
+}
+
+const char* SaliencyMetric::toString(Scale scale)
+{
+    switch (scale)
+    {
+    case SCENE:
+        return "scene";
+    case VIEW:
+        return "view";
+    default:
+        return "absolute";
+    }
+}
+
+bool SaliencyMetric::parseScale(const std::string& name, Scale& scale)
+{
+    std::string n = name;
+    for (char& c : n)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (Scale s : {ABSOLUTE, SCENE, VIEW})
+        if (n == toString(s))
+        {
+            scale = s;
+            return true;
+        }
+    return false;
 }
 
 const char* SaliencyMetric::toString(Kind kind)

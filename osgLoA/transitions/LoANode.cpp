@@ -116,14 +116,17 @@ void LoANode::bind()
             _preparation.add(StylePreparation::prepare(*getChild(i), *_scenario, _preparationOptions));
         }
         _evaluator->bind(_scenario.get(), _index);
+        const UsageScenario* fitted = _evaluator->getScenario();
+        for (const std::string& note : _evaluator->getFitting().getNotes())
+            OSG_INFO << "osgLoA::LoANode: scenario '" << _scenario->getName() << "': " << note << std::endl;
         osg::StateSet* ss = getOrCreateStateSet();
         ss->setDataVariance(osg::Object::DYNAMIC);
         TransitionUniforms::applyScenario(*ss, *_evaluator);
         setUpDistanceField();
         _renderer->bind(*_evaluator, _index);
-        if (_scenario->getFocusFeature() != 0 && !_evaluator->getView().focus.valid())
+        if (fitted->getFocusFeature() != 0 && !_evaluator->getView().focus.valid())
             OSG_WARN << "osgLoA::LoANode: scenario '" << _scenario->getName() << "' focuses on feature "
-                     << _scenario->getFocusFeature()
+                     << fitted->getFocusFeature()
                      << ", which this model does not have: the focus metric is 0 everywhere" << std::endl;
     }
     catch (const std::exception& e)
@@ -138,7 +141,7 @@ void LoANode::bind()
 void LoANode::setUpDistanceField()
 {
     double texel = 0.0, maxDistance = 0.0;
-    for (const auto& c : _scenario->getConfigurations())
+    for (const auto& c : _evaluator->getScenario()->getConfigurations())
     {
         const SaliencyMetric* m = c->getMetric(SaliencyMetric::REGION);
         if (!m || c->getInterpolation() != TransitionConfiguration::FRAGMENT) continue;
@@ -168,17 +171,29 @@ void LoANode::setUpDistanceField()
     _distanceField->setGrid(grid);
     _distanceField->setUnits(DistanceField::WORLD);
     _distanceField->setMaxDistance(maxDistance + grid.texelSize);
-    _distanceField->setRegions(_scenario->getRegions());
+    _distanceField->setRegions(_evaluator->getScenario()->getRegions());
     TransitionUniforms::applyRegionMap(*ss, _distanceField->getDistanceTexture(), grid.origin,
                                        osg::Vec2d(grid.width * grid.texelSize, grid.height * grid.texelSize),
                                        1.0);
+}
+
+void LoANode::followEye()
+{
+    // View-scaled metrics: near/far followed the eye's distance to the scene centre in the
+    // evaluation; the shaders read them from uniforms.
+    if (_evaluator->isBound() && _evaluator->viewScaleChanged())
+        TransitionUniforms::applyScenario(*getOrCreateStateSet(), *_evaluator);
 }
 
 void LoANode::evaluate(const osg::Vec3d& eye)
 {
     std::lock_guard<std::mutex> lock(_mutex);
     if (needsBind()) bind();
-    if (_evaluator->isBound()) _evaluator->evaluate(eye);
+    if (_evaluator->isBound())
+    {
+        _evaluator->evaluate(eye);
+        followEye();
+    }
 }
 
 void LoANode::traverse(osg::NodeVisitor& nv)
@@ -213,6 +228,7 @@ void LoANode::traverse(osg::NodeVisitor& nv)
             }
             const osg::Vec3d eye(cv->getEyeLocal());
             _evaluator->evaluate(eye, _visible.data());
+            followEye();
             // Fragment-mode uniforms: the eye, and world -> local for the shaders' positions
             // (MV = localToWorld * V, so worldToLocal = V * inverse(MV)).
             osg::StateSet* ss = getOrCreateStateSet();

@@ -19,8 +19,10 @@ void ScenarioEvaluator::bind(const UsageScenario* scenario, const FeatureIndex& 
         if (v.errors.size() > 1) msg += " (and " + std::to_string(v.errors.size() - 1) + " more)";
         throw std::invalid_argument(msg);
     }
-    _scenario = scenario;
     _revision = scenario->getRevision();
+    _fitting.fit(*scenario, index);
+    scenario = _fitting.getScenario();
+    _scenario = scenario;
     _features.clear();
     _matches.clear();
     _ids.clear();
@@ -83,6 +85,7 @@ void ScenarioEvaluator::bind(const UsageScenario* scenario, const FeatureIndex& 
 void ScenarioEvaluator::evaluate(const osg::Vec3d& eye, const unsigned char* visible)
 {
     if (!_scenario.valid()) throw std::logic_error("ScenarioEvaluator::evaluate before bind");
+    _viewScaleChanged = _fitting.applyEye(eye);
     _view.eye = eye;
     _stats = Statistics();
     const auto& configs = _scenario->getConfigurations();

@@ -172,10 +172,14 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
     {
         // Figure 9B: detail near the camera, abstraction far away.
         auto s =
-            makeScenario(name, "View-distance transitions (paper 004 Figure 9B): photorealistic up to about "
-                               "340 m from the camera, abstract from 450 to 600 m, cartographic beyond 710 "
-                               "m; smooth in between.");
-        addThreeLevels(*s, {new M(M::VIEW_DISTANCE, 150.0, 900.0)}, "cartographic", 0.25f, 0.4f, 0.6f, 0.75f);
+            makeScenario(name, "View-distance transitions (paper 004 Figure 9B): photorealistic up to 0.56 D "
+                               "from the camera, abstract from 0.75 D to 1 D, cartographic beyond 1.19 D, "
+                               "smooth in between, where D is the camera's distance to the centre of the "
+                               "scene (so the bands fit any scene and follow the camera; on the demo city's "
+                               "oblique view D = 590 m: 330 m, 440-590 m, 700 m).");
+        osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.25, 1.5);
+        distance->setScale(M::VIEW);
+        addThreeLevels(*s, {distance}, "cartographic", 0.25f, 0.4f, 0.6f, 0.75f);
         return s;
     }
     if (name == "view-angle")
@@ -185,11 +189,14 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         // landmarks (static interest >= 0.8) stay photorealistic.
         auto s = makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
                                     "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
-                                    "3:1 with view distance); landmarks keep their detail and, in "
+                                    "3:1 with view distance, 0.35-2 times the camera's distance to the scene "
+                                    "centre); landmarks keep their detail and, in "
                                     "map-like views, grow, turn their best view to the viewer and "
                                     "flatten (§3.2.2).");
-        addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), new M(M::VIEW_DISTANCE, 200.0, 1200.0, 1.0)},
-                     "photorealistic", "cartographic", 0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
+        osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.35, 2.0, 1.0);
+        distance->setScale(M::VIEW);
+        addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), distance}, "photorealistic", "cartographic",
+                     0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
         TransitionConfiguration::FeatureTypes allTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes));
         auto landmarks = config("landmarks", "photorealistic", allTypes, TransitionConfiguration::OBJECT,
                                 BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
@@ -204,43 +211,53 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
     if (name == "route")
     {
         // Figure 9C: features along a route in detail, the context cartographic.
-        auto s =
-            makeScenario(name, "Route highlighting (paper 004 Figure 9C): photorealistic within 40 m of the "
-                               "route's centre line, fading smoothly to cartographic 160 m away.");
-        osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE,
-                                                                    {{-480.0, -330.0},
-                                                                     {-160.0, -330.0},
-                                                                     {-160.0, 40.0},
-                                                                     {200.0, 40.0},
-                                                                     {200.0, 330.0},
-                                                                     {460.0, 330.0}},
-                                                                    10.0);
+        auto s = makeScenario(name,
+                              "Route highlighting (paper 004 Figure 9C): the route runs along the scene's "
+                              "longest chain of touching streets; photorealistic within 0.04 S of its centre "
+                              "line, fading smoothly to cartographic 0.15 S away, where S is the scene's "
+                              "size (half its horizontal diagonal; 1090 m on the demo city: 44 m, 164 m).");
+        osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE, {}, 0.01);
         route->setName("route");
+        route->setPlacement(RegionOfInterest::LONGEST_STREET);
+        route->setSceneScale(true);
         s->addRegion(route.get());
-        addTwoLevels(*s, {new M(M::REGION, 30.0, 150.0)}, "photorealistic", "cartographic", 0.0f, 1.0f);
+        osg::ref_ptr<M> region = new M(M::REGION, 0.03, 0.14);
+        region->setScale(M::SCENE);
+        addTwoLevels(*s, {region}, "photorealistic", "cartographic", 0.0f, 1.0f);
         return s;
     }
     if (name == "circular-roi")
     {
         // Figure 9D-F: a circular region of interest in detail, abstraction around it.
-        auto s = makeScenario(name, "Circular region of interest (paper 004 Figure 9D-F): photorealistic "
-                                    "within 150 m of the city centre, abstract beyond 250 m.");
+        auto s =
+            makeScenario(name, "Circular region of interest (paper 004 Figure 9D-F): photorealistic "
+                               "within 0.14 S of the scene's centre, abstract beyond 0.23 S, where S is "
+                               "the scene's size (half its horizontal diagonal; 1090 m on the demo city: "
+                               "150 m, 250 m).");
         osg::ref_ptr<RegionOfInterest> roi =
-            new RegionOfInterest(RegionOfInterest::CIRCLES, {{0.0, 0.0}}, 150.0);
+            new RegionOfInterest(RegionOfInterest::CIRCLES, {{0.0, 0.0}}, 0.14);
         roi->setName("centre");
+        roi->setPlacement(RegionOfInterest::SCENE_CENTRE);
+        roi->setSceneScale(true);
         s->addRegion(roi.get());
-        addTwoLevels(*s, {new M(M::REGION, 0.0, 100.0)}, "photorealistic", "abstract", 0.0f, 1.0f);
+        osg::ref_ptr<M> region = new M(M::REGION, 0.0, 0.09);
+        region->setScale(M::SCENE);
+        addTwoLevels(*s, {region}, "photorealistic", "abstract", 0.0f, 1.0f);
         return s;
     }
     if (name == "blueprint")
     {
         // Figure 9E: the focus object drawn as a blueprint, the context in detail.
         auto s = makeScenario(
-            name, "Blueprint focus (paper 004 Figure 9E): the focus object (feature 184, the demo "
-                  "city's central tower) and what lies within 30 m of it drawn as a blueprint, fading to the "
-                  "photorealistic context 90 m away.");
-        s->setFocusFeature(184); // the demo city's central landmark (a tower)
-        addTwoLevels(*s, {new M(M::FOCUS, 30.0, 90.0)}, "blueprint", "photorealistic", 0.0f, 1.0f);
+            name, "Blueprint focus (paper 004 Figure 9E): the focus object (the scene's tallest landmark, "
+                  "else its tallest building; the demo city's central tower, feature 184) and what lies "
+                  "within 0.03 S of it drawn as a blueprint, fading to the photorealistic context 0.08 S "
+                  "away, where S is the scene's size (half its horizontal diagonal; 1090 m on the demo "
+                  "city: 33 m, 87 m).");
+        s->setFocusTallestLandmark(true);
+        osg::ref_ptr<M> focus = new M(M::FOCUS, 0.03, 0.08);
+        focus->setScale(M::SCENE);
+        addTwoLevels(*s, {focus}, "blueprint", "photorealistic", 0.0f, 1.0f);
         return s;
     }
     throw ScenarioError("unknown built-in scenario '" + name + "'");

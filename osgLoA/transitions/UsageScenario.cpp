@@ -14,7 +14,7 @@ UsageScenario::UsageScenario(const UsageScenario& other, const osg::CopyOp& copy
     : osg::Object(other, copyop), _description(other._description),
       _interest(other._interest.valid() ? static_cast<FeatureInterest*>(copyop(other._interest.get()))
                                         : nullptr),
-      _focusFeature(other._focusFeature),
+      _focusFeature(other._focusFeature), _focusTallestLandmark(other._focusTallestLandmark),
       _landmarkDeformation(other._landmarkDeformation.valid()
                                ? static_cast<LandmarkDeformation*>(copyop(other._landmarkDeformation.get()))
                                : nullptr)
@@ -91,7 +91,7 @@ UsageScenario::Validation UsageScenario::validate() const
         const std::string label = "configuration '" + c->getName() + "': ";
         if (c->getMetric(SaliencyMetric::REGION) && !usableRegion)
             v.errors.push_back(label + "uses the region metric but the scenario has no usable region");
-        if (c->getMetric(SaliencyMetric::FOCUS) && _focusFeature == 0)
+        if (c->getMetric(SaliencyMetric::FOCUS) && _focusFeature == 0 && !_focusTallestLandmark)
             v.errors.push_back(label + "uses the focus metric but the scenario has no focus object");
         if (!c->getName().empty() && !names.insert(c->getName()).second)
             v.warnings.push_back("two configurations are named '" + c->getName() + "'");

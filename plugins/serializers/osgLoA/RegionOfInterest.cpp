@@ -52,4 +52,12 @@ REGISTER_OBJECT_WRAPPER(osgLoA_RegionOfInterest, new osgLoA::RegionOfInterest, o
     ADD_BOUNDED_VECTOR_SERIALIZER(Vertices, osgLoA::RegionOfInterest::Vertices,
                                   osgDB::BaseSerializer::RW_VEC2D, 1);
     ADD_USER_SERIALIZER(Radius);
+    BEGIN_ENUM_BY_NAME_SERIALIZER(Placement, ABSOLUTE);
+    ADD_ENUM_VALUE(ABSOLUTE);
+    ADD_ENUM_VALUE(SCENE_CENTRE);
+    ADD_ENUM_VALUE(FEATURE);
+    ADD_ENUM_VALUE(LONGEST_STREET);
+    END_ENUM_SERIALIZER();
+    ADD_UINT_SERIALIZER(PlacementFeature, 0u);
+    ADD_BOOL_SERIALIZER(SceneScale, false);
 }
