@@ -5,7 +5,12 @@
 #include <osgLoA/semantics/FeatureTypeView>
 #include <osgLoA/util/ImageFile>
 
+#include <osgDB/FileUtils>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
 
 #include <map>
 
@@ -81,4 +86,34 @@ TEST(LoaClassifyGLTest, BestViewsForEveryLandmarkAndThresholdsSelectLandmarks)
     EXPECT_EQ(loatest::run(classify + " --landmark-threshold 2", out), 2) << out;
     EXPECT_EQ(loatest::run(classify + " --interest '" + dir + "/city.osgb'", out), 1) << out;
     EXPECT_NE(out.find("not an osgLoA::FeatureInterest"), std::string::npos) << out;
+}
+
+// Issue 18: every tool classifies the same way. loa-render --stats writes the feature counts of
+// what it drew; on TORCS street-1 (and the CityGML test city) they are loa-classify's.
+TEST(LoaClassifyGLTest, LoaRenderCountsTheFeaturesAsLoaClassifyDoes)
+{
+    const std::string street1 = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/torcs-street-1.osgt";
+    std::vector<std::string> models = {std::string(LOA_SOURCE_DIR) + "/tests/data/citygml/small-city.gml"};
+    if (osgDB::fileExists(std::string(LOA_SOURCE_DIR) + "/data/cache/torcs-data/street-1/street-1.ac"))
+        models.push_back(street1);
+    const std::string dir = loatest::freshDirectory("LoaClassifyGLTestStats");
+    for (const std::string& model : models)
+    {
+        std::string classified, rendered;
+        ASSERT_EQ(
+            loatest::run("{ '" + std::string(LOA_CLASSIFY_EXE) + "' '" + model + "' --json 2>/dev/null; }",
+                         classified),
+            0)
+            << classified;
+        ASSERT_EQ(loatest::run("'" + std::string(LOA_RENDER_EXE) + "' '" + model +
+                                   "' --style cartographic --camera oblique --size 96x54 --out '" + dir +
+                                   "/x.png' --stats '" + dir + "/x.json'",
+                               rendered),
+                  0)
+            << rendered;
+        std::ifstream in(dir + "/x.json");
+        const nlohmann::json stats = nlohmann::json::parse(in);
+        ASSERT_TRUE(stats.contains("features")) << stats.dump();
+        EXPECT_EQ(stats["features"], nlohmann::json::parse(classified)) << model;
+    }
 }

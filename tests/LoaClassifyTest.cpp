@@ -210,3 +210,16 @@ TEST(LoaClassifyTest, RulesAddToTheDefaultsAndRulesOnlyReplacesThem)
     EXPECT_EQ(loatest::run(classify() + " '" + path + "' --rules a.osgt --rules-only b.osgt", out), 2) << out;
     EXPECT_NE(out.find("use one of them"), std::string::npos) << out;
 }
+
+// CityGML through the tools as through osgDB: loa-classify counts what the document holds
+// (hand count in tests/data/citygml/small-city.gml: 2 buildings, a road and a bridge, a land
+// use area, a plant cover).
+TEST(LoaClassifyTest, CityGmlCountsMatchTheDocument)
+{
+    std::string out;
+    const std::string gml = std::string(LOA_SOURCE_DIR) + "/tests/data/citygml/small-city.gml";
+    ASSERT_EQ(loatest::run("{ " + classify() + " '" + gml + "' --json 2>/dev/null; }", out), 0) << out;
+    EXPECT_EQ(out,
+              "{\"building\": 2, \"street\": 2, \"water\": 0, \"green\": 1, \"terrain\": 1, \"generic\": 0, "
+              "\"landmarks\": 0}\n");
+}

@@ -75,14 +75,22 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
     }
 }
 
-TEST(LoaRenderTest, ListStylesPrintsEveryStyleOneALine)
+TEST(LoaRenderTest, ListStylesPrintsEveryStyleWithItsDescription)
 {
     std::string out;
     ASSERT_EQ(loatest::run(exe() + " --list-styles", out), 0) << out;
     std::vector<std::string> lines;
     std::size_t start = 0;
     for (std::size_t end; (end = out.find('\n', start)) != std::string::npos; start = end + 1)
-        lines.push_back(out.substr(start, end - start));
+    {
+        // "NAME  description": the name, two spaces at least, a description.
+        const std::string line = out.substr(start, end - start);
+        const std::size_t gap = line.find("  ");
+        ASSERT_NE(gap, std::string::npos) << line;
+        EXPECT_GT(line.find_first_not_of(' ', gap), gap) << line;
+        EXPECT_EQ(line.find("(no description)"), std::string::npos) << line;
+        lines.push_back(line.substr(0, gap));
+    }
     for (const char* name :
          {"photorealistic", "abstract", "cartographic", "blueprint", "hidden", "dog", "kuwahara3",
           "kuwahara5", "kuwahara-dog", "adaptive", "adaptive-segmented", "cel", "pencil", "sobel", "canny",

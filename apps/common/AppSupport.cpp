@@ -309,6 +309,34 @@ void checkCameraOptions(const CameraChoice& c)
 
 namespace loa
 {
+osg::ref_ptr<osg::Node> loadModel(const std::string& path, const std::string& readerOptions)
+{
+    if (readerOptions.find_first_not_of(' ') != std::string::npos)
+    {
+        osg::ref_ptr<osgDB::Options> options =
+            osgDB::Registry::instance()->getOptions()
+                ? static_cast<osgDB::Options*>(
+                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
+                : new osgDB::Options;
+        options->setOptionString(readerOptions);
+        osgDB::Registry::instance()->setOptions(options.get());
+    }
+    return loadModel(path);
+}
+
+bool parseReaderOption(const std::string& a, Args& args, std::string& readerOptions)
+{
+    if (a != "-O" && a != "--options") return false;
+    readerOptions += (readerOptions.empty() ? "" : " ") + args.value(a);
+    return true;
+}
+
+const char* const kReaderOptionsHelp =
+    R"(  -O TEXT, --options TEXT
+                        options for MODEL's reader (an osgDB option string; repeatable), e.g.
+                        "lod=1 theme=summer" for CityGML, "lod=2.2" for CityJSON
+)";
+
 osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, const std::string& readerOptions)
 {
     const std::string ext = osgDB::getLowerCaseFileExtension(path);

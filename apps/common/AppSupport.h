@@ -75,6 +75,11 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 
 /** Loads a model file with osgDB, or throws std::runtime_error with one clear sentence. */
 osg::ref_ptr<osg::Node> loadModel(const std::string& path);
+/** loadModel with an osgDB option string for the model's reader ("" for none). */
+osg::ref_ptr<osg::Node> loadModel(const std::string& path, const std::string& readerOptions);
+/** Consumes -O TEXT / --options TEXT (repeatable, joined with spaces); false for other words. */
+bool parseReaderOption(const std::string& a, Args& args, std::string& readerOptions);
+extern const char* const kReaderOptionsHelp;
 
 /** The tools' positional argument: an argument starting with '-' is an unknown option, else it is
  *  the model, given once (UsageError otherwise, naming both). */

@@ -60,7 +60,7 @@ exit status: 0 done, 1 the model, the rules or an output could not be read or wr
 
 struct Options
 {
-    std::string model, image, save, writeRules, interest;
+    std::string model, image, save, writeRules, interest, readerOptions;
     loa::RulesChoice rules;
     bool json = false, bestViews = false;
     float landmarkThreshold = -1.0f;
@@ -76,11 +76,13 @@ Options parse(int argc, char** argv)
     {
         const std::string a = args.next();
         loa::exitOnHelpOrVersion(a, "loa-classify",
-                                 std::string(kHelp) + loa::kRulesHelp + kHelpMiddle + loa::kCameraHelp +
-                                     kHelpTail);
+                                 std::string(kHelp) + loa::kReaderOptionsHelp + loa::kRulesHelp +
+                                     kHelpMiddle + loa::kCameraHelp + kHelpTail);
         if (loa::parseCameraOption(a, args, o.camera))
             continue;
         else if (loa::parseRulesOption(a, args, o.rules))
+            continue;
+        else if (loa::parseReaderOption(a, args, o.readerOptions))
             continue;
         else if (a == "--interest")
             o.interest = args.value(a);
@@ -125,7 +127,7 @@ int run(const Options& o)
     osg::ref_ptr<osgLoA::ClassificationRuleSet> rules = o.rules.assemble();
 
     const auto t0 = std::chrono::steady_clock::now();
-    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);
+    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model, o.readerOptions);
     const auto t1 = std::chrono::steady_clock::now();
     const osgLoA::FeatureClassifier::Report report = osgLoA::FeatureClassifier(rules.get()).classify(*scene);
     const auto t2 = std::chrono::steady_clock::now();

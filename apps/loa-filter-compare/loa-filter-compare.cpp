@@ -25,7 +25,7 @@ namespace
 const char* kHelp = R"(usage: loa-filter-compare --filter SPEC --out DIR [options]
 
 Renders the demo city (or MODEL) with the image filter SPEC ("NAME:key=value,...", see
-loa-prefilter --list) in two ways and writes, into DIR,
+--list-filters) in two ways and writes, into DIR,
   filtering-NAME-per-level.png     textures filtered per mip level before texture mapping
                                    (paper 000 Eq. 2, perspective-coherent)
   filtering-NAME-post-process.png  the rendered frame filtered (Eq. 1, the baseline)
@@ -40,6 +40,7 @@ options:
   --city "K=V ..."      demo city parameters (docs/demo-city.md)
   --anisotropy N        anisotropic texture filtering, 1..16 probes, in both images (default 16)
   --cpu                 filter the textures with the CPU references instead of the GPU
+  --list-filters        print the registered filters and exit (as loa-prefilter does)
 )";
 const char* kHelpEnd = R"(  --help, --version
 
@@ -74,6 +75,12 @@ Options parse(int argc, char** argv)
             loa::parseSize(args.value(a), o.width, o.height);
         else if (a == "--name")
             o.name = args.value(a);
+        else if (a == "--list-filters")
+        {
+            for (const std::string& n : osgLoA::FilterRegistry::names())
+                std::cout << n << "  " << osgLoA::FilterRegistry::description(n) << "\n";
+            std::exit(loa::kOk);
+        }
         else if (a == "--model")
             o.model = args.value(a);
         else if (a == "--city")

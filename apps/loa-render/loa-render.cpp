@@ -48,7 +48,7 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
   --out FILE.png        where to write the image (default out/render.png)
   --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON;
                         with --scenario or a LoA --style also the classified features per
-                        type, counted as loa-classify --json counts them
+                        type, counted as loa-classify counts them
   --city "K=V ..."      demo city parameters, e.g. "seed=7 blocksX=6 blocksY=4"
                         (keys: see docs/demo-city.md); ignored with MODEL
   --scenario NAME|FILE  draw with LoA transitions: wrap the scene in a LoA node carrying the
@@ -66,7 +66,8 @@ const char* kHelpOptions = R"(  --size WxH            image size in pixels (defa
                         osgLoA::AbstractionStyle). Image-space and hybrid styles (papers 001,
                         002) render through an abstraction node; the other styles through a
                         LoA node whose scenario draws every feature in that style
-  --list-styles         print the name of every graphic style, one a line, and exit
+  --list-styles         print every graphic style, one a line: its name and what it draws,
+                        and exit
   --focus X,Y           focus point of adaptive styles in normalized window coordinates
                         ((0,0) bottom left; default the style's, usually 0.5,0.5)
   --focus-object ID     focus object: a feature id (or drawable number in scenes without
@@ -89,7 +90,7 @@ failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
 struct Options
 {
     std::string model, out = "out/render.png", stats, city, program, scenario, style;
-    std::string focus, focusObject, focusWorld, focusRadii;
+    std::string focus, focusObject, focusWorld, focusRadii, readerOptions;
     bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
     loa::CameraChoice camera;
@@ -107,10 +108,13 @@ Options parse(int argc, char** argv)
     {
         const std::string a = args.next();
         loa::exitOnHelpOrVersion(a, "loa-render",
-                                 std::string(kHelp) + loa::kCameraHelp + kHelpOptions + loa::kRulesHelp);
+                                 std::string(kHelp) + loa::kReaderOptionsHelp + loa::kCameraHelp +
+                                     kHelpOptions + loa::kRulesHelp);
         if (loa::parseCameraOption(a, args, o.camera))
             continue;
         else if (loa::parseRulesOption(a, args, o.rules))
+            continue;
+        else if (loa::parseReaderOption(a, args, o.readerOptions))
             continue;
         else if (a == "--size")
             loa::parseSize(args.value(a), o.width, o.height);
@@ -269,8 +273,14 @@ int run(const Options& o)
 {
     if (o.listStyles)
     {
-        for (const std::string& name : osgLoA::GraphicStyleCatalog::instance().names())
-            std::cout << name << "\n";
+        // One a line: the name, then what it draws (names first, so `cut -d' ' -f1` lists them).
+        std::size_t width = 0;
+        const auto entries = osgLoA::GraphicStyleCatalog::instance().entries();
+        for (const auto& e : entries)
+            width = std::max(width, e.name.size());
+        for (const auto& e : entries)
+            std::cout << e.name << std::string(width + 2 - e.name.size(), ' ')
+                      << (e.description.empty() ? std::string("(no description)") : e.description) << "\n";
         return loa::kOk;
     }
     osg::ref_ptr<osgLoA::AbstractionStyle> abstraction;
@@ -286,7 +296,7 @@ int run(const Options& o)
         const auto g0 = std::chrono::steady_clock::now();
         if (!o.model.empty())
         {
-            scene = loa::loadModel(o.model);
+            scene = loa::loadModel(o.model, o.readerOptions);
             what = "'" + o.model + "'";
         }
         else
