@@ -223,3 +223,22 @@ TEST(LoaClassifyTest, CityGmlCountsMatchTheDocument)
               "{\"building\": 2, \"street\": 2, \"water\": 0, \"green\": 1, \"terrain\": 1, \"generic\": 0, "
               "\"landmarks\": 0}\n");
 }
+
+// Several models are one scene: the CityGML test city and the OpenCity block together count as
+// the sum of their counts.
+TEST(LoaClassifyTest, SeveralModelsAreOneScene)
+{
+    const std::string gml = std::string(LOA_SOURCE_DIR) + "/tests/data/citygml/small-city.gml";
+    const std::string block = realScene("opencity-block", "opencity-data/hotel/hotel.ac");
+    if (block.empty()) GTEST_SKIP() << "the OpenCity block is not extracted: run scripts/fetch-test-data";
+    std::string a, b, both;
+    ASSERT_EQ(loatest::run("{ " + classify() + " '" + gml + "' --json 2>/dev/null; }", a), 0) << a;
+    ASSERT_EQ(loatest::run("{ " + classify() + " '" + block + "' --json 2>/dev/null; }", b), 0) << b;
+    ASSERT_EQ(loatest::run("{ " + classify() + " '" + gml + "' '" + block + "' --json 2>/dev/null; }", both),
+              0)
+        << both;
+    const nlohmann::json ja = nlohmann::json::parse(a), jb = nlohmann::json::parse(b),
+                         j = nlohmann::json::parse(both);
+    for (const auto& kv : j.items())
+        EXPECT_EQ(kv.value().get<int>(), ja[kv.key()].get<int>() + jb[kv.key()].get<int>()) << kv.key();
+}

@@ -46,7 +46,7 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
         {"--bogus", 2, "unknown option '--bogus'"},
         {"--size", 2, "--size needs a value"},
         {"--city blocksX=0", 2, "blocksX must be in 1..200"},
-        {"a.osgb b.osgb", 2, "more than one model"},
+        {"a.osgb b.osgb", 1, "cannot read 'a.osgb'"}, // several models are one scene
         {"--program toon", 2, "unknown --program 'toon'"},
         {"--style nope", 2, "unknown --style 'nope' (loa-render --list-styles lists them)"},
         {"--style kuwahara3 --scenario distance", 2, "--style excludes --scenario and --program"},

@@ -9,6 +9,7 @@
 #include <osgDB/Registry>
 
 #include <osg/Notify>
+#include <osg/ProxyNode>
 
 #include <algorithm>
 #include <cmath>
@@ -381,6 +382,31 @@ void takeModelArgument(const std::string& a, std::string& model)
     if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (see --help)");
     if (!model.empty()) throw UsageError("more than one model given ('" + model + "' and '" + a + "')");
     model = a;
+}
+
+void takeModelArguments(const std::string& a, std::vector<std::string>& models, std::string& label)
+{
+    if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (see --help)");
+    models.push_back(a);
+    label += (label.empty() ? "" : " + ") + a;
+}
+
+osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions)
+{
+    if (paths.size() == 1) return loadModel(paths.front(), readerOptions);
+    // Several models: one scene, each model under a ProxyNode that names its file, so that the
+    // classifier treats each model's top node as a file, not as a name for what is in it.
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->setName("models");
+    for (const std::string& path : paths)
+    {
+        osg::ref_ptr<osg::ProxyNode> proxy = new osg::ProxyNode;
+        proxy->setName(osgDB::getSimpleFileName(path));
+        proxy->setFileName(0, path);
+        proxy->addChild(loadModel(path, readerOptions).get());
+        scene->addChild(proxy.get());
+    }
+    return scene;
 }
 } // namespace loa
 

@@ -84,6 +84,11 @@ extern const char* const kReaderOptionsHelp;
 /** The tools' positional argument: an argument starting with '-' is an unknown option, else it is
  *  the model, given once (UsageError otherwise, naming both). */
 void takeModelArgument(const std::string& argument, std::string& model);
+/** The same for tools that take several models: appended to models, label joins them. */
+void takeModelArguments(const std::string& argument, std::vector<std::string>& models, std::string& label);
+/** Loads the models (reader options for each) into one scene: a single model as it is, several
+ *  under one group, each in a ProxyNode naming its file. */
+osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions);
 
 /** How the batch tools name a texture in messages: its image's file name, else the image's name,
  *  else "texture 'NAME'", else "texture #index+1 (unnamed)". */

@@ -24,12 +24,13 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-classify MODEL [options]
+const char* kHelp = R"(usage: loa-classify MODEL... [options]
 
-Loads MODEL (any file osgDB reads through the plugins: .cityjson, .city.json, .osm, .osm.pbf,
-.osm.bz2, .osgb, .obj, demo.loacity ...), classifies its features and prints how many features
-of each type it holds. Features that the model data already typed keep their type; the rules
-classify the rest, and the appearance fallback what no rule matched (docs/classification.md).
+Loads MODEL (any file osgDB reads through the plugins: .cityjson, .city.json, .gml, .osm,
+.osm.pbf, .osm.bz2, .osgb, .obj, demo.loacity ...), classifies its features and prints how many
+features of each type it holds; several MODELs are one scene, classified together. Features
+that the model data already typed keep their type; the rules classify the rest, and the
+appearance fallback what no rule matched (docs/classification.md).
 
 options:
 )";
@@ -60,6 +61,7 @@ exit status: 0 done, 1 the model, the rules or an output could not be read or wr
 
 struct Options
 {
+    std::vector<std::string> models; ///< MODEL arguments (several: one scene)
     std::string model, image, save, writeRules, interest, readerOptions;
     loa::RulesChoice rules;
     bool json = false, bestViews = false;
@@ -107,7 +109,7 @@ Options parse(int argc, char** argv)
         else if (a == "--write-default-rules")
             o.writeRules = args.value(a);
         else
-            loa::takeModelArgument(a, o.model);
+            loa::takeModelArguments(a, o.models, o.model);
     }
     loa::checkCameraOptions(o.camera);
     if (o.writeRules.empty() && o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
@@ -127,7 +129,14 @@ int run(const Options& o)
     osg::ref_ptr<osgLoA::ClassificationRuleSet> rules = o.rules.assemble();
 
     const auto t0 = std::chrono::steady_clock::now();
-    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model, o.readerOptions);
+    osg::ref_ptr<osg::Node> scene = loa::loadModels(o.models, o.readerOptions);
+    if (o.models.size() > 1)
+    {
+        const std::vector<unsigned> duplicates = osgLoA::FeatureIndex(*scene).duplicateIds();
+        if (!duplicates.empty())
+            std::cerr << "loa-classify: warning: " << duplicates.size()
+                      << " feature ids occur in more than one model (first: " << duplicates.front() << ")\n";
+    }
     const auto t1 = std::chrono::steady_clock::now();
     const osgLoA::FeatureClassifier::Report report = osgLoA::FeatureClassifier(rules.get()).classify(*scene);
     const auto t2 = std::chrono::steady_clock::now();

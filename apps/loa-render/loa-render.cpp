@@ -33,10 +33,10 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-render [MODEL] [options]
+const char* kHelp = R"(usage: loa-render [MODEL...] [options]
 
 Renders MODEL (any file osgDB reads: .osgb, .osgt, .obj, ...) headless through EGL into a PNG.
-Without MODEL it renders the built-in demo city.
+Several MODELs are drawn as one scene. Without MODEL it renders the built-in demo city.
 
 options:
 )";
@@ -89,6 +89,7 @@ failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
 
 struct Options
 {
+    std::vector<std::string> models; ///< MODEL arguments (several: one scene)
     std::string model, out = "out/render.png", stats, city, program, scenario, style;
     std::string focus, focusObject, focusWorld, focusRadii, readerOptions;
     bool listStyles = false;
@@ -155,7 +156,7 @@ Options parse(int argc, char** argv)
         else if (a == "--gl-info")
             o.glInfo = true;
         else
-            loa::takeModelArgument(a, o.model);
+            loa::takeModelArguments(a, o.models, o.model);
     }
     loa::checkCameraOptions(o.camera);
     if (!o.scenario.empty() && !o.program.empty())
@@ -296,7 +297,7 @@ int run(const Options& o)
         const auto g0 = std::chrono::steady_clock::now();
         if (!o.model.empty())
         {
-            scene = loa::loadModel(o.model, o.readerOptions);
+            scene = loa::loadModels(o.models, o.readerOptions);
             what = "'" + o.model + "'";
         }
         else
