@@ -51,6 +51,10 @@ using BenchCaseFn = std::vector<Row> (*)(unsigned frames, std::string& renderer)
 /** Case "interest" (BenchInterest.cpp): ScenarioEvaluator::evaluate per frame for synthetic
  *  cities of 1k, 10k and 100k features and the distance, route and view-angle scenarios. */
 std::vector<Row> interest(unsigned frames, std::string& renderer);
+/** classify-objects: one real object, one feature (FeatureClassifier step 5) on the real test
+ *  scenes, per grouping variant: classify time against the relative error of the per-type
+ *  feature counts to the hand counts (data/test-scenes/NAME.counts.json). BenchClassifyObjects.cpp. */
+std::vector<Row> classifyObjects(unsigned frames, std::string& renderer);
 
 /** Case "distance-field" (BenchDistanceField.cpp): the region-interest distance map at 512^2,
  *  1024^2 and 2048^2: CPU seeds, CPU exact EDT, GPU JFA, 1+JFA and JFA+2 against the exact EDT. */

@@ -2,13 +2,13 @@
 #include "../common/AppSupport.h"
 #include "BenchCase.h"
 
-#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/Version>
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureIndex>
+#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageCompare>
 #include <osgLoA/util/MachineInfo>
@@ -55,6 +55,12 @@ cases:
                  and of every name but one feature in five; classify time against the
                  fraction of drawables typed wrongly (error_mean) and left generic
                  (error_max), for appearance thresholds 0 (same texture only) to 40 Delta E
+  classify-objects
+                 one real object, one feature: the classifier's object grouping (per Geode,
+                 per transform, + touching buildings at 0.05 and 0.5) on TORCS street-1 and
+                 the OpenCity block (run from the repository root); classify time against
+                 the relative error of the per-type feature counts to the hand counts
+                 (error_mean: summed over types, error_max: the worst type)
   interest       ScenarioEvaluator::evaluate per frame (CPU, one thread, no GL) for synthetic
                  grid cities of 1k, 10k and 100k features and the built-in distance, route and
                  view-angle scenarios, the eye circling the centre; error_mean/error_max: the
@@ -125,12 +131,14 @@ std::vector<Row> plainRender(unsigned frames, std::string& renderer)
             row.times = r->timeFrames(frames);
             // The timed frame, checked: the loa_plain program covers what the fixed function does.
             osg::ref_ptr<osg::Image> frame = r->renderImage();
-            const std::string problem = pipeline ? checkFrame(*frame, *fixedFrame, r->getCamera()->getClearColor())
-                                                 : checkBlocks(*frame, *frame);
+            const std::string problem = pipeline
+                                            ? checkFrame(*frame, *fixedFrame, r->getCamera()->getClearColor())
+                                            : checkBlocks(*frame, *frame);
             if (!pipeline) fixedFrame = frame;
             row.parameters += " frame=" + (problem.empty() ? std::string("ok") : "FAILED(" + problem + ")");
             row.frameFailed = !problem.empty();
-            if (sz[0] == 1920 || row.frameFailed) keepFrame(*frame, "plain-render-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
+            if (sz[0] == 1920 || row.frameFailed)
+                keepFrame(*frame, "plain-render-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) +
                                       (pipeline ? "-loa_plain" : "-fixed"));
             rows.push_back(row);
             std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms\n";
@@ -410,6 +418,7 @@ int main(int argc, char** argv)
                                                                {"msaa", msaa},
                                                                {"import", import},
                                                                {"classify-appearance", classifyAppearance},
+                                                               {"classify-objects", classifyObjects},
                                                                {"interest", interest},
                                                                {"distance-field", distanceField},
                                                                {"abuffer", abuffer},
