@@ -344,17 +344,7 @@ osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, cons
     std::string optionString = readerOptions;
     if (ext == "osgb" || ext == "osgt" || ext == "osgx")
         optionString += (optionString.empty() ? "" : " ") + std::string("ForceReadingImage");
-    if (!optionString.empty())
-    {
-        osg::ref_ptr<osgDB::Options> options =
-            osgDB::Registry::instance()->getOptions()
-                ? static_cast<osgDB::Options*>(
-                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
-                : new osgDB::Options;
-        options->setOptionString(optionString);
-        osgDB::Registry::instance()->setOptions(options.get());
-    }
-    return loadModel(path);
+    return loadModel(path, optionString);
 }
 } // namespace loa
 

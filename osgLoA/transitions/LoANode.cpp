@@ -182,7 +182,7 @@ void LoANode::followEye()
     // View-scaled metrics: near/far followed the eye's distance to the scene centre in the
     // evaluation; the shaders read them from uniforms.
     if (_evaluator->isBound() && _evaluator->viewScaleChanged())
-        TransitionUniforms::applyScenario(*getOrCreateStateSet(), *_evaluator);
+        TransitionUniforms::applyRamps(*getOrCreateStateSet(), *_evaluator);
 }
 
 void LoANode::evaluate(const osg::Vec3d& eye)

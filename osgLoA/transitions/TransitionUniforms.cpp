@@ -27,8 +27,6 @@ void TransitionUniforms::applyScenario(osg::StateSet& ss, const ScenarioEvaluato
     osg::Uniform* mode = uniform(ss, "loa_mode", osg::Uniform::INT_VEC4, kN);
     osg::Uniform* weight = uniform(ss, "loa_metricWeight", osg::Uniform::FLOAT_VEC4, kN);
     osg::Uniform* interestWeight = uniform(ss, "loa_interestWeight", osg::Uniform::FLOAT, kN);
-    osg::Uniform* rampA = uniform(ss, "loa_rampA", osg::Uniform::FLOAT_VEC4, kN);
-    osg::Uniform* rampB = uniform(ss, "loa_rampB", osg::Uniform::FLOAT_VEC4, kN);
     for (unsigned j = 0; j < n; ++j)
     {
         const TransitionConfiguration& c = *configs[j];
@@ -36,20 +34,17 @@ void TransitionUniforms::applyScenario(osg::StateSet& ss, const ScenarioEvaluato
         fade->setElement(j, osg::Vec4f(b.inBegin, b.inEnd, b.outBegin, b.outEnd));
         int present = 0;
         float w[SaliencyMetric::kNumKinds] = {};
-        osg::Vec2f ramp[SaliencyMetric::kNumKinds];
         for (const auto& m : c.getMetrics())
         {
             if (!m.valid()) continue;
             present |= 1 << m->getKind();
             w[m->getKind()] = float(m->getWeight());
-            ramp[m->getKind()].set(float(m->getNear()), float(m->getFar()));
         }
         mode->setElement(j, int(c.getInterpolation()), int(c.getCombination()), present, 0);
         weight->setElement(j, osg::Vec4f(w[0], w[1], w[2], w[3]));
         interestWeight->setElement(j, w[SaliencyMetric::FEATURE_INTEREST]);
-        rampA->setElement(j, osg::Vec4f(ramp[0].x(), ramp[0].y(), ramp[1].x(), ramp[1].y()));
-        rampB->setElement(j, osg::Vec4f(ramp[2].x(), ramp[2].y(), ramp[3].x(), ramp[3].y()));
     }
+    applyRamps(ss, evaluator);
     // Interest groups: fragment-mode configurations whose interest is the same function (same
     // metrics, weights, ramps and combination) share one evaluation per fragment. With at most
     // kMaxInterestGroups of them the shader is specialized at compile time (LOA_INTEREST_GROUPS,
@@ -100,6 +95,24 @@ void TransitionUniforms::applyScenario(osg::StateSet& ss, const ScenarioEvaluato
         uniform(ss, "loa_focusMax", osg::Uniform::FLOAT_VEC3)->set(osg::Vec3f(focus._max));
     }
     if (!ss.getUniform("loa_hasRegionMap")) uniform(ss, "loa_hasRegionMap", osg::Uniform::BOOL)->set(false);
+}
+
+void TransitionUniforms::applyRamps(osg::StateSet& ss, const ScenarioEvaluator& evaluator)
+{
+    const UsageScenario* s = evaluator.getScenario();
+    if (!s) return;
+    const auto& configs = s->getConfigurations();
+    const unsigned n = unsigned(std::min<std::size_t>(configs.size(), kN));
+    osg::Uniform* rampA = uniform(ss, "loa_rampA", osg::Uniform::FLOAT_VEC4, kN);
+    osg::Uniform* rampB = uniform(ss, "loa_rampB", osg::Uniform::FLOAT_VEC4, kN);
+    for (unsigned j = 0; j < n; ++j)
+    {
+        osg::Vec2f ramp[SaliencyMetric::kNumKinds];
+        for (const auto& m : configs[j]->getMetrics())
+            if (m.valid()) ramp[m->getKind()].set(float(m->getNear()), float(m->getFar()));
+        rampA->setElement(j, osg::Vec4f(ramp[0].x(), ramp[0].y(), ramp[1].x(), ramp[1].y()));
+        rampB->setElement(j, osg::Vec4f(ramp[2].x(), ramp[2].y(), ramp[3].x(), ramp[3].y()));
+    }
 }
 
 void TransitionUniforms::applyEye(osg::StateSet& ss, const osg::Vec3d& eye)
