@@ -22,7 +22,7 @@ TEST(LoaCitygenTest, WritesOsgtOsgbAndObjThatReadBack)
     for (const char* name : {"c.osgt", "c.osgb", "obj/c.obj"})
     {
         std::string out;
-        ASSERT_EQ(loatest::run(exe() + " '" + dir + "/" + name + "' --small --seed 3", out), 0) << out;
+        ASSERT_EQ(loatest::run(exe() + " --out '" + dir + "/" + name + "' --small --seed 3", out), 0) << out;
         osg::ref_ptr<osg::Node> n = osgDB::readRefNodeFile(dir + "/" + name);
         ASSERT_TRUE(n.valid()) << name;
         EXPECT_GT(osgLoA::SceneStatistics::collect(*n).triangles, 5000u) << name;
@@ -40,14 +40,19 @@ TEST(LoaCitygenTest, BadArguments)
 {
     std::string out;
     EXPECT_EQ(loatest::run(exe(), out), 2);
-    EXPECT_NE(out.find("no OUTPUT file given"), std::string::npos) << out;
-    EXPECT_EQ(loatest::run(exe() + " /tmp/x.nosuchformat", out), 2);
+    EXPECT_NE(out.find("no --out FILE given"), std::string::npos) << out;
+    EXPECT_EQ(loatest::run(exe() + " --out /tmp/x.nosuchformat", out), 2);
     EXPECT_NE(out.find("no osgDB plugin writes '.nosuchformat'"), std::string::npos) << out;
-    EXPECT_EQ(loatest::run(exe() + " /tmp/x.osgt --city riverWidth=1", out), 2);
+    // The old positional OUTPUT is an unexpected argument now (one spelling: --out).
+    EXPECT_EQ(loatest::run(exe() + " /tmp/x.osgt", out), 2);
+    EXPECT_NE(out.find("unexpected argument '/tmp/x.osgt'"), std::string::npos) << out;
+    EXPECT_EQ(loatest::run(exe() + " --out /tmp/x.nosuchformat", out), 2);
+    EXPECT_NE(out.find("no osgDB plugin writes '.nosuchformat'"), std::string::npos) << out;
+    EXPECT_EQ(loatest::run(exe() + " --out /tmp/x.osgt -O riverWidth=1", out), 2);
     EXPECT_NE(out.find("riverWidth"), std::string::npos) << out;
     // A parent "directory" that is a regular file cannot be created, even by root.
     const std::string dir = loatest::freshDirectory("LoaCitygenBad");
     loatest::run("touch '" + dir + "/afile'", out);
-    EXPECT_EQ(loatest::run(exe() + " '" + dir + "/afile/x.osgt' --small", out), 1);
+    EXPECT_EQ(loatest::run(exe() + " --out '" + dir + "/afile/x.osgt' --small", out), 1);
     EXPECT_NE(out.find("loa-citygen: error:"), std::string::npos) << out;
 }

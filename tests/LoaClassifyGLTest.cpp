@@ -20,7 +20,7 @@ TEST(LoaClassifyGLTest, EveryDemoCityTypeShowsInItsColour)
 {
     const std::string dir = loatest::freshDirectory("LoaClassifyGLTest");
     std::string out;
-    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0)
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' --out '" + dir + "/city.osgb' --small", out), 0)
         << out;
     ASSERT_EQ(loatest::run(std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/city.osgb' --image '" + dir +
                                "/types.png' --size 240x180 --camera top",
@@ -68,7 +68,7 @@ TEST(LoaClassifyGLTest, BestViewsForEveryLandmarkAndThresholdsSelectLandmarks)
 {
     const std::string dir = loatest::freshDirectory("LoaClassifyGLTestViews");
     std::string out;
-    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + dir + "/city.osgb' --small", out), 0)
+    ASSERT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' --out '" + dir + "/city.osgb' --small", out), 0)
         << out;
     const std::string classify = std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/city.osgb'";
     ASSERT_EQ(loatest::run(classify + " --best-views", out), 0) << out;

@@ -27,7 +27,7 @@ std::string smallCity(const std::string& dir, const std::string& name)
     const std::string path = dir + "/" + name;
     if (!osgDB::fileExists(path))
     {
-        EXPECT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' '" + path + "' --small", out), 0)
+        EXPECT_EQ(loatest::run(std::string("'") + LOA_CITYGEN_EXE + "' --out '" + path + "' --small", out), 0)
             << out;
     }
     return path;

@@ -159,7 +159,7 @@ TEST_F(LoaPalette, SyntheticModelLevelsAndChart)
 {
     std::string out;
     const std::string o = dir + "/out";
-    const int rc = runTool("'" + model + "' --levels 5,1,8 --out '" + o + "'", out);
+    const int rc = runTool("'" + model + "' --levels 5,1,8 --out-dir '" + o + "'", out);
     ASSERT_EQ(rc, 0) << out;
     EXPECT_TRUE(contains(out, "five colours.png has 5 colours: level 8 gives all 5")) << out;
 
@@ -190,7 +190,7 @@ TEST_F(LoaPalette, SyntheticModelLevelsAndChart)
     // half.png: level 2 = red, blue (the only weighted colours); the unused columns take the
     // nearest of them in Lab: near-red -> red, near-blue -> blue.
     std::string out2;
-    ASSERT_EQ(runTool("'" + model + "' --levels 2 --out '" + o + "2'", out2), 0) << out2;
+    ASSERT_EQ(runTool("'" + model + "' --levels 2 --out-dir '" + o + "2'", out2), 0) << out2;
     const osg::ref_ptr<osg::Image> h2 = readPng(o + "2/half-2.png");
     ASSERT_TRUE(h2);
     for (int y = 0; y < 4; ++y)
@@ -265,7 +265,7 @@ TEST_F(LoaPalette, DemoCity)
 {
     const std::string options = "seed=2 blocksX=2 blocksY=2", o = dir + "/city";
     std::string out;
-    const int rc = runTool("demo.loacity -O '" + options + "' --levels 2,4 --out '" + o + "'", out);
+    const int rc = runTool("demo.loacity -O '" + options + "' --levels 2,4 --out-dir '" + o + "'", out);
     ASSERT_EQ(rc, 0) << out;
     EXPECT_TRUE(contains(out, " 0 skipped")) << out;
 
@@ -331,10 +331,10 @@ TEST_F(LoaPalette, UsageAndFailureExitCodes)
         int rc;
         std::string message;
     };
-    const std::string m = "'" + model + "'", o = " --out '" + dir + "/out'";
+    const std::string m = "'" + model + "'", o = " --out-dir '" + dir + "/out'";
     const std::vector<Case> cases = {
         {"", 2, "no MODEL given"},
-        {m, 2, "--out DIR is required"},
+        {m, 2, "--out-dir DIR is required"},
         {m + o + " --levels 0", 2, "--levels '0': 0 is outside 1..65536"},
         {m + o + " --levels 4,,8", 2, "'' is not a level"},
         {m + o + " --levels four", 2, "'four' is not a level"},
@@ -343,11 +343,11 @@ TEST_F(LoaPalette, UsageAndFailureExitCodes)
         {m + o + " --linkage single", 2, "--linkage 'single' is not ward or centroid"},
         {m + o + " --max-colors 0", 2, "--max-colors must be at least 1"},
         {m + o + " --frobnicate", 2, "unknown option '--frobnicate'"},
-        {m + " " + m + o, 2, "more than one model"},
+        {m + " '" + dir + "/nothere.osgb'" + o, 1, "nothere.osgb"}, // several models: each must read
         {"'" + dir + "/nothere.osgt'" + o, 1, "cannot read"},
         {"'" + dir + "/bare.osgt'" + o, 1, "no textured geometry"},
-        {m + " --out '" + dir + "/file/sub'", 1, "cannot create the output directory"},
-        {m + " --out '" + dir + "/file'", 1, "exists and is not a directory"},
+        {m + " --out-dir '" + dir + "/file/sub'", 1, "cannot create the output directory"},
+        {m + " --out-dir '" + dir + "/file'", 1, "exists and is not a directory"},
     };
     for (const Case& k : cases)
     {

@@ -167,7 +167,7 @@ TEST_F(LoaPrefilter, FiltersGoodImagesAndSkipsBadOnesWithTheirNames)
 {
     std::string out;
     const std::string cache = dir + "/cache";
-    int rc = runTool("'" + model + "' --filter gaussian:sigma=1 --out '" + cache + "' --jobs 2", out);
+    int rc = runTool("'" + model + "' --filter gaussian:sigma=1 --cache '" + cache + "' --jobs 2", out);
     EXPECT_EQ(rc, 4) << out; // some skipped
     EXPECT_TRUE(contains(out, "9 2D textures, 8 distinct images")) << out;
     EXPECT_TRUE(contains(out, "skipped corrupt.png: is empty (0x0)")) << out;
@@ -180,18 +180,18 @@ TEST_F(LoaPrefilter, FiltersGoodImagesAndSkipsBadOnesWithTheirNames)
     EXPECT_EQ(files.size(), 4u);
 
     // The second run reads everything from the cache.
-    rc = runTool("'" + model + "' --filter gaussian:sigma=1 --out '" + cache + "'", out);
+    rc = runTool("'" + model + "' --filter gaussian:sigma=1 --cache '" + cache + "'", out);
     EXPECT_EQ(rc, 4) << out;
     EXPECT_TRUE(contains(out, "8 images: 0 filtered, 4 cached, 4 skipped")) << out;
     EXPECT_EQ(cacheFiles(cache), files);
 
     // Another filter parameter is another set of files.
-    rc = runTool("'" + model + "' --filter gaussian:sigma=1.5 --out '" + cache + "'", out);
+    rc = runTool("'" + model + "' --filter gaussian:sigma=1.5 --cache '" + cache + "'", out);
     EXPECT_TRUE(contains(out, "4 filtered, 0 cached, 4 skipped")) << out;
     EXPECT_EQ(cacheFiles(cache).size(), 8u);
 
     // --max-size: a.png (32x32) and b.png (24x16) are too large for 20.
-    rc = runTool("'" + model + "' --filter gaussian:sigma=1 --max-size 20 --out '" + cache + "'", out);
+    rc = runTool("'" + model + "' --filter gaussian:sigma=1 --max-size 20 --cache '" + cache + "'", out);
     EXPECT_EQ(rc, 4) << out;
     EXPECT_TRUE(contains(out, "skipped a.png: is 32x32, above --max-size 20")) << out;
     EXPECT_TRUE(contains(out, "skipped b.png: is 24x16, above --max-size 20")) << out;
@@ -202,7 +202,7 @@ TEST_F(LoaPrefilter, CacheHoldsMipmapFilterResults)
 {
     std::string out;
     const std::string cache = dir + "/cache";
-    runTool("'" + model + "' --filter gaussian:sigma=1 --out '" + cache + "'", out);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --cache '" + cache + "'", out);
     osg::ref_ptr<FilterCache> fc = new FilterCache(cache);
     osg::ref_ptr<osgLoA::GaussianFilter> g = new osgLoA::GaussianFilter;
     g->setSigma(1.0f);
@@ -224,15 +224,15 @@ TEST_F(LoaPrefilter, CacheHoldsMipmapFilterResults)
 TEST_F(LoaPrefilter, ShardsAndJobs)
 {
     std::string out;
-    runTool("'" + model + "' --filter gaussian:sigma=1 --jobs 1 --out '" + dir + "/all'", out);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --jobs 1 --cache '" + dir + "/all'", out);
     const auto all = cacheFiles(dir + "/all");
     ASSERT_EQ(all.size(), 4u) << out;
 
     std::string out0, out1;
-    EXPECT_EQ(runTool("'" + model + "' --filter gaussian:sigma=1 --shard 0/2 --out '" + dir + "/s0'", out0),
+    EXPECT_EQ(runTool("'" + model + "' --filter gaussian:sigma=1 --shard 0/2 --cache '" + dir + "/s0'", out0),
               4)
         << out0;
-    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 1/2 --out '" + dir + "/s1'", out1);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 1/2 --cache '" + dir + "/s1'", out1);
     const auto s0 = cacheFiles(dir + "/s0"), s1 = cacheFiles(dir + "/s1");
     EXPECT_FALSE(s0.empty());
     EXPECT_FALSE(s1.empty());
@@ -255,12 +255,12 @@ TEST_F(LoaPrefilter, ShardsAndJobs)
 
     // Shards into the same directory, one after the other: the second finds none of its
     // images cached (disjoint), and the union is the unsharded result.
-    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 0/2 --out '" + dir + "/shared'", out);
-    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 1/2 --out '" + dir + "/shared'", out);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 0/2 --cache '" + dir + "/shared'", out);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --shard 1/2 --cache '" + dir + "/shared'", out);
     EXPECT_TRUE(contains(out, " 0 cached")) << out;
     EXPECT_EQ(cacheFiles(dir + "/shared"), all);
 
-    runTool("'" + model + "' --filter gaussian:sigma=1 --jobs 3 --out '" + dir + "/jobs3'", out);
+    runTool("'" + model + "' --filter gaussian:sigma=1 --jobs 3 --cache '" + dir + "/jobs3'", out);
     EXPECT_TRUE(contains(out, "on 3 thread(s)")) << out;
     EXPECT_EQ(cacheFiles(dir + "/jobs3"), all);
 }
@@ -270,8 +270,8 @@ TEST_F(LoaPrefilter, ExportRoundTripHasTheFilteredLevels)
 {
     std::string out;
     const std::string exported = dir + "/filtered.osgb";
-    const int rc = runTool("'" + model + "' --filter gaussian:sigma=1 --out '" + dir + "/cache' --export '" +
-                               exported + "'",
+    const int rc = runTool("'" + model + "' --filter gaussian:sigma=1 --cache '" + dir +
+                               "/cache' --export '" + exported + "'",
                            out);
     EXPECT_EQ(rc, 4) << out;
     EXPECT_TRUE(contains(out, "(5 textures with filtered levels)")) << out;
@@ -324,9 +324,10 @@ TEST_F(LoaPrefilter, ExportRoundTripHasTheFilteredLevels)
 TEST_F(LoaPrefilter, DemoCityPseudoLoader)
 {
     std::string out;
-    const int rc = runTool(
-        "demo.loacity -O 'seed=2 blocksX=2 blocksY=2' --filter gaussian:sigma=0.5 --out '" + dir + "/cache'",
-        out);
+    const int rc =
+        runTool("demo.loacity -O 'seed=2 blocksX=2 blocksY=2' --filter gaussian:sigma=0.5 --cache '" + dir +
+                    "/cache'",
+                out);
     EXPECT_EQ(rc, 0) << out;
     EXPECT_TRUE(contains(out, " 0 skipped")) << out;
     EXPECT_FALSE(cacheFiles(dir + "/cache").empty());
@@ -340,11 +341,11 @@ TEST_F(LoaPrefilter, UsageAndFailureExitCodes)
         int rc;
         std::string message;
     };
-    const std::string m = "'" + model + "'", c = " --out '" + dir + "/cache'";
+    const std::string m = "'" + model + "'", c = " --cache '" + dir + "/cache'";
     const std::vector<Case> cases = {
         {"", 2, "no MODEL given"},
         {m + c, 2, "--filter is required"},
-        {m + " --filter gaussian", 2, "--out DIR is required"},
+        {m + " --filter gaussian --out '" + dir + "/cache'", 2, "unknown option '--out'"}, // now --cache
         {m + " --filter nosuchfilter" + c, 2, "--filter: "},
         {m + " --filter gaussian:sigma=-1" + c, 2, "sigma"},
         {m + " --filter gaussian --shard 2/2" + c, 2, "I must be in 0..1"},
@@ -355,9 +356,9 @@ TEST_F(LoaPrefilter, UsageAndFailureExitCodes)
         {m + " --filter gaussian --frobnicate" + c, 2, "unknown option '--frobnicate'"},
         {m + " --filter gaussian --export out.obj" + c, 2, "must name an .osgb file"},
         {m + " --filter gaussian --shard 0/2 --export x.osgb" + c, 2, "without --shard"},
-        {m + " " + m + " --filter gaussian" + c, 2, "more than one model"},
+        {m + " '" + dir + "/nothere.osgb' --filter gaussian" + c, 1, "nothere.osgb"}, // several models
         {"'" + dir + "/nothere.osgb' --filter gaussian" + c, 1, "cannot read"},
-        {m + " --filter gaussian --out '" + dir + "/a.png/cache'", 1, "is not usable"},
+        {m + " --filter gaussian --cache '" + dir + "/a.png/cache'", 1, "is not usable"},
     };
     for (const Case& k : cases)
     {

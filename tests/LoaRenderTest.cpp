@@ -45,7 +45,9 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
         {"--out x.jpg", 2, "must name a .png file"},
         {"--bogus", 2, "unknown option '--bogus'"},
         {"--size", 2, "--size needs a value"},
-        {"--city blocksX=0", 2, "blocksX must be in 1..200"},
+        {"--size 10x10 --size 20x20", 2, "--size given more than once"},
+        {"x.osgb --frob 3", 2, "unknown option '--frob'"},
+        {"-O blocksX=0", 2, "blocksX must be in 1..200"},
         {"a.osgb b.osgb", 1, "cannot read 'a.osgb'"}, // several models are one scene
         {"--program toon", 2, "unknown --program 'toon'"},
         {"--style nope", 2, "unknown --style 'nope' (loa-render --list-styles lists them)"},
@@ -66,7 +68,9 @@ TEST(LoaRenderTest, BadInputGivesOneClearLineAndTheDocumentedStatus)
         if (args == "XYZ") args = "'" + dir + "/model.xyz123'";
         if (args == "--style NOTASTYLE") args = "--style '" + dir + "/group.osgt'";
         std::string out;
-        const int status = loatest::run(exe() + " --out '" + dir + "/x.png' " + args, out);
+        const std::string outOption =
+            args.find("--out ") == std::string::npos ? " --out '" + dir + "/x.png' " : " ";
+        const int status = loatest::run(exe() + outOption + args, out);
         EXPECT_EQ(status, c.status) << c.args << "\n" << out;
         EXPECT_EQ(out.rfind("loa-render: error: ", 0), 0u) << c.args << " printed:\n" << out;
         EXPECT_NE(out.find(c.message), std::string::npos) << c.args << " printed:\n" << out;

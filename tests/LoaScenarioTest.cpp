@@ -410,7 +410,7 @@ TEST(LoaScenarioTest, ErrorsAreClearWithTheirExitStatus)
     EXPECT_EQ(scenario("explain distance --features x", out), 2) << out;
     EXPECT_EQ(scenario("explain distance --camera nowhere", out), 2) << out;
     EXPECT_EQ(scenario("explain distance --image x.jpg", out), 2) << out;
-    EXPECT_EQ(scenario("explain distance --model " + quote(dir + "/missing.osgb"), out), 1) << out;
+    EXPECT_EQ(scenario("explain distance " + quote(dir + "/missing.osgb"), out), 1) << out;
     EXPECT_TRUE(contains(out, "missing.osgb")) << out;
     // A scenario that does not validate cannot be explained.
     const std::string bad = quote(dir + "/bad.osgt");
@@ -421,10 +421,14 @@ TEST(LoaScenarioTest, ErrorsAreClearWithTheirExitStatus)
     EXPECT_TRUE(contains(out, "does not validate: configuration 'photorealistic': unknown graphic style"))
         << out;
     ASSERT_EQ(scenario("--help", out), 0);
-    for (const char* word :
-         {"list", "show", "validate", "create", "set", "explain", "add-region", "--camera"})
+    for (const char* word : {"list", "show", "validate", "create", "set", "explain"})
         EXPECT_TRUE(contains(out, word)) << word;
+    // Each command's --help describes it in full.
     EXPECT_EQ(scenario("set --help", out), 0);
+    EXPECT_TRUE(contains(out, "add-region")) << out;
+    EXPECT_EQ(scenario("explain --help", out), 0);
+    EXPECT_TRUE(contains(out, "--camera")) << out;
+    EXPECT_TRUE(contains(out, "SCENARIO MODEL...")) << out;
 }
 
 // On the small demo city, every feature that a configuration draws has normalized weights
@@ -435,7 +439,7 @@ TEST(LoaScenarioTest, ExplainWeightsSumToOnePerDrawnFeature)
     const std::string city = smallCityFile(dir);
     for (const char* name : {"distance", "view-angle", "manual", "route", "circular-roi", "blueprint"})
     {
-        const json e = scenarioJson(std::string("explain ") + name + " --model " + quote(city) +
+        const json e = scenarioJson(std::string("explain ") + name + " " + quote(city) +
                                     " --camera oblique --features 0 --json");
         ASSERT_TRUE(e.is_object()) << name;
         ASSERT_GT(e["features"].size(), 10u) << name;
@@ -467,7 +471,7 @@ TEST(LoaScenarioTest, ExplainWeightsSumToOnePerDrawnFeature)
     const std::string focus = quote(dir + "/focus.osgt");
     ASSERT_EQ(scenario("create " + focus + " --from blueprint", out), 0) << out;
     ASSERT_EQ(scenario("set " + focus + " focus=4000000", out), 0) << out;
-    const json w = scenarioJson("explain " + focus + " --model " + quote(city) + " --json");
+    const json w = scenarioJson("explain " + focus + " " + quote(city) + " --json");
     ASSERT_EQ(w["warnings"].size(), 1u) << w.dump(1);
     EXPECT_TRUE(contains(w["warnings"][0], "focus feature 4000000 is not in the model")) << w.dump(1);
 
@@ -491,8 +495,7 @@ TEST(LoaScenarioTest, DistanceScenarioFavoursNearerBuildings)
 {
     const std::string dir = loatest::freshDirectory("LoaScenarioTestDistance");
     const std::string city = smallCityFile(dir);
-    const json e =
-        scenarioJson("explain distance --model " + quote(city) + " --camera street --features 0 --json");
+    const json e = scenarioJson("explain distance " + quote(city) + " --camera street --features 0 --json");
     ASSERT_TRUE(e.is_object());
     std::vector<std::pair<double, double>> buildings; // (distance, interest)
     for (const json& f : e["features"])
@@ -544,8 +547,8 @@ void expectTransitionsOn(const std::string& model)
 {
     for (const std::string& name : osgLoA::ScenarioLibrary::builtinNames())
     {
-        const json e = scenarioJson("explain " + name + " --model " + quote(model) +
-                                    " --camera oblique --features 0 --json");
+        const json e =
+            scenarioJson("explain " + name + " " + quote(model) + " --camera oblique --features 0 --json");
         ASSERT_TRUE(e.is_object()) << name << " on " << model;
         std::map<std::string, unsigned> styles;
         for (const json& f : e["features"])

@@ -44,7 +44,7 @@ TEST(LoaSheetTest, TilesRowByRowWithWhiteGaps)
     const std::string blue = solid(dir + "/blue.png", 4, 2, 0, 0, 255);
     const std::string half = solid(dir + "/half.png", 4, 2, 0, 0, 0, 128); // black, half transparent
     std::string out;
-    ASSERT_EQ(loatest::run(sheet() + " '" + dir + "/s.png' '" + red + "' '" + blue + "' '" + half +
+    ASSERT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png' '" + red + "' '" + blue + "' '" + half +
                                "' --columns 2 --gap 1",
                            out),
               0)
@@ -69,15 +69,15 @@ TEST(LoaSheetTest, ErrorsAreClearWithTheirExitStatus)
     const std::string a = solid(dir + "/a.png", 4, 2, 1, 2, 3);
     const std::string b = solid(dir + "/b.png", 3, 2, 1, 2, 3);
     std::string out;
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.png' '" + a + "' '" + b + "'", out), 2) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png' '" + a + "' '" + b + "'", out), 2) << out;
     EXPECT_NE(out.find("3x2"), std::string::npos) << out;
     EXPECT_NE(out.find("one size"), std::string::npos) << out;
     EXPECT_FALSE(osgDB::fileExists(dir + "/s.png"));
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.png' '" + dir + "/missing.png'", out), 1) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png' '" + dir + "/missing.png'", out), 1) << out;
     EXPECT_NE(out.find("missing.png"), std::string::npos) << out;
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.png'", out), 2) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png'", out), 2) << out;
     EXPECT_NE(out.find("no IMAGE"), std::string::npos) << out;
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.jpg' '" + a + "'", out), 2) << out;
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.png' '" + a + "' --columns 0", out), 2) << out;
-    EXPECT_EQ(loatest::run(sheet() + " '" + dir + "/s.png' '" + a + "' --frobnicate", out), 2) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.jpg' '" + a + "'", out), 2) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png' '" + a + "' --columns 0", out), 2) << out;
+    EXPECT_EQ(loatest::run(sheet() + " --out '" + dir + "/s.png' '" + a + "' --frobnicate", out), 2) << out;
 }

@@ -176,7 +176,7 @@ TEST(MipmapFilterGLTest, LoaPrefilterGpuMatchesCpu)
     }
     ASSERT_TRUE(osgDB::writeNodeFile(*root, dir + "/model.osgb"));
     std::string out;
-    const std::string base = "'" + exe + "' '" + dir + "/model.osgb' --filter gaussian:sigma=1.5 --out '";
+    const std::string base = "'" + exe + "' '" + dir + "/model.osgb' --filter gaussian:sigma=1.5 --cache '";
     ASSERT_EQ(loatest::run(base + dir + "/cpu'", out), 0) << out;
     ASSERT_EQ(loatest::run(base + dir + "/gpu' --gpu --export '" + dir + "/gpu.osgb'", out), 0) << out;
     EXPECT_NE(out.find("on the GPU"), std::string::npos) << out;

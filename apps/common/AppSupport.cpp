@@ -2,6 +2,7 @@
 
 #include <osgLoA/Version>
 #include <osgLoA/city/CityCameras>
+#include <osgLoA/city/CityGenerator>
 
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
@@ -108,25 +109,6 @@ int runTool(const char* tool, const std::function<void()>& parse, const std::fun
                            throw std::runtime_error(e.what());
                        }
                    });
-}
-
-Args::Args(int argc, char** argv)
-{
-    for (int i = 1; i < argc; ++i)
-        _words.emplace_back(argv[i]);
-}
-
-std::string Args::next()
-{
-    std::string w = _words.front();
-    _words.erase(_words.begin());
-    return w;
-}
-
-std::string Args::value(const std::string& option)
-{
-    if (_words.empty()) throw UsageError(option + " needs a value");
-    return next();
 }
 
 void parseSize(const std::string& text, int& width, int& height)
@@ -255,47 +237,6 @@ osgLoA::CameraPose cameraPose(const CameraChoice& choice, osg::Node& scene, doub
     return pose;
 }
 
-const char* const kCameraHelp =
-    R"(  --camera NAME         a named view: street, oblique, top, horizon (computed from the
-                        model's buildings and streets; see docs/demo-city.md)
-  --eye X,Y,Z --center X,Y,Z [--up X,Y,Z]
-                        an explicit look-at camera (up defaults to 0,0,1)
-                        (no camera option: frame the model's bounding sphere)
-)";
-
-void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help)
-{
-    if (a == "--help" || a == "-h")
-    {
-        std::cout << help;
-        std::exit(kOk);
-    }
-    if (a == "--version")
-    {
-        std::cout << tool << " " << osgLoAGetVersion() << "\n";
-        std::exit(kOk);
-    }
-}
-
-bool parseCameraOption(const std::string& a, Args& args, CameraChoice& c)
-{
-    if (a == "--camera")
-    {
-        c.name = args.value(a);
-        if (!osgLoA::CityCameras::isName(c.name))
-            throw UsageError("unknown camera '" + c.name + "' (known: street, oblique, top, horizon)");
-    }
-    else if (a == "--eye")
-        c.eye = parseVec3(a, args.value(a)), c.haveEye = true;
-    else if (a == "--center")
-        c.center = parseVec3(a, args.value(a)), c.haveCenter = true;
-    else if (a == "--up")
-        c.up = parseVec3(a, args.value(a)), c.haveUp = true;
-    else
-        return false;
-    return true;
-}
-
 void checkCameraOptions(const CameraChoice& c)
 {
     if (c.haveEye != c.haveCenter) throw UsageError("--eye and --center go together");
@@ -324,19 +265,6 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path, const std::string& re
     }
     return loadModel(path);
 }
-
-bool parseReaderOption(const std::string& a, Args& args, std::string& readerOptions)
-{
-    if (a != "-O" && a != "--options") return false;
-    readerOptions += (readerOptions.empty() ? "" : " ") + args.value(a);
-    return true;
-}
-
-const char* const kReaderOptionsHelp =
-    R"(  -O TEXT, --options TEXT
-                        options for MODEL's reader (an osgDB option string; repeatable), e.g.
-                        "lod=1 theme=summer" for CityGML, "lod=2.2" for CityJSON
-)";
 
 osg::ref_ptr<osg::Node> loadModelKeepingImageNames(const std::string& path, const std::string& readerOptions)
 {
@@ -367,23 +295,14 @@ std::string imageSizeText(const osg::Image& image)
 
 namespace loa
 {
-void takeModelArgument(const std::string& a, std::string& model)
+osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions,
+                                   bool keepImageNames)
 {
-    if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (see --help)");
-    if (!model.empty()) throw UsageError("more than one model given ('" + model + "' and '" + a + "')");
-    model = a;
-}
-
-void takeModelArguments(const std::string& a, std::vector<std::string>& models, std::string& label)
-{
-    if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (see --help)");
-    models.push_back(a);
-    label += (label.empty() ? "" : " + ") + a;
-}
-
-osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions)
-{
-    if (paths.size() == 1) return loadModel(paths.front(), readerOptions);
+    const auto load = [&](const std::string& path) {
+        return keepImageNames ? loadModelKeepingImageNames(path, readerOptions)
+                              : loadModel(path, readerOptions);
+    };
+    if (paths.size() == 1) return load(paths.front());
     // Several models: one scene, each model under a ProxyNode that names its file, so that the
     // classifier treats each model's top node as a file, not as a name for what is in it.
     osg::ref_ptr<osg::Group> scene = new osg::Group;
@@ -393,47 +312,44 @@ osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const 
         osg::ref_ptr<osg::ProxyNode> proxy = new osg::ProxyNode;
         proxy->setName(osgDB::getSimpleFileName(path));
         proxy->setFileName(0, path);
-        proxy->addChild(loadModel(path, readerOptions).get());
+        proxy->addChild(load(path).get());
         scene->addChild(proxy.get());
     }
     return scene;
+}
+osg::ref_ptr<osg::Node> loadModelsOrDemoCity(const std::vector<std::string>& paths,
+                                             const std::string& readerOptions, std::string& what)
+{
+    if (!paths.empty())
+    {
+        std::string label;
+        for (const std::string& p : paths)
+            label += (label.empty() ? "" : " + ") + p;
+        what = "'" + label + "'";
+        return loadModels(paths, readerOptions);
+    }
+    osgLoA::CityParameters params;
+    try
+    {
+        params.parse(readerOptions);
+        params.validate();
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw UsageError(std::string("-O (demo city parameters): ") + e.what());
+    }
+    what = "the demo city (seed " + std::to_string(params.seed) + ", " + std::to_string(params.blocksX) +
+           "x" + std::to_string(params.blocksY) + " blocks)";
+    return osgLoA::CityGenerator(params).generate();
 }
 } // namespace loa
 
 namespace loa
 {
 
-const char* const kRulesHelp =
-    R"(  --rules FILE          classification rules (.osgt/.osgb/.osgx holding an
-                        osgLoA::ClassificationRuleSet) tried before the built-in rules;
-                        repeatable, the first file's rules first
-  --rules-only FILE     classify with FILE's rules instead of the built-in ones (repeatable)
-  --override            let the rules replace types the model data gives (never a user's)
-)";
-
 osg::ref_ptr<osgLoA::ClassificationRuleSet> RulesChoice::assemble() const
 {
     return osgLoA::ClassificationRuleSet::assemble(files, only, overrideModelData);
-}
-
-bool parseRulesOption(const std::string& a, Args& args, RulesChoice& choice)
-{
-    if (a == "--rules" || a == "--rules-only")
-    {
-        const bool only = a == "--rules-only";
-        if (!choice.files.empty() && choice.only != only)
-            throw UsageError(
-                "--rules adds to the built-in rules and --rules-only replaces them: use one of them");
-        choice.only = only;
-        choice.files.push_back(args.value(a));
-        return true;
-    }
-    if (a == "--override")
-    {
-        choice.overrideModelData = true;
-        return true;
-    }
-    return false;
 }
 
 } // namespace loa

@@ -50,22 +50,6 @@ int runTool(const char* tool, const std::function<int()>& body);
  *  scenario file), exit 1. UsageError is 2 in either phase. */
 int runTool(const char* tool, const std::function<void()>& parse, const std::function<int()>& work);
 
-/** argv as a queue of words with strict option parsing. */
-class Args
-{
-public:
-    Args(int argc, char** argv);
-    bool empty() const { return _words.empty(); }
-    /** Removes and returns the next word. */
-    std::string next();
-    const std::string& peek() const { return _words.front(); }
-    /** The value of option `option` (the word after it); throws UsageError if missing. */
-    std::string value(const std::string& option);
-
-private:
-    std::vector<std::string> _words;
-};
-
 /** "WxH" with 1 <= W, H <= 16384. */
 void parseSize(const std::string& text, int& width, int& height);
 /** "X,Y,Z" of finite numbers. */
@@ -77,18 +61,18 @@ unsigned parseCount(const std::string& option, const std::string& text, unsigned
 osg::ref_ptr<osg::Node> loadModel(const std::string& path);
 /** loadModel with an osgDB option string for the model's reader ("" for none). */
 osg::ref_ptr<osg::Node> loadModel(const std::string& path, const std::string& readerOptions);
-/** Consumes -O TEXT / --options TEXT (repeatable, joined with spaces); false for other words. */
-bool parseReaderOption(const std::string& a, Args& args, std::string& readerOptions);
-extern const char* const kReaderOptionsHelp;
 
-/** The tools' positional argument: an argument starting with '-' is an unknown option, else it is
- *  the model, given once (UsageError otherwise, naming both). */
-void takeModelArgument(const std::string& argument, std::string& model);
-/** The same for tools that take several models: appended to models, label joins them. */
-void takeModelArguments(const std::string& argument, std::vector<std::string>& models, std::string& label);
 /** Loads the models (reader options for each) into one scene: a single model as it is, several
- *  under one group, each in a ProxyNode naming its file. */
-osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions);
+ *  under one group, each in a ProxyNode naming its file. keepImageNames: each through
+ *  loadModelKeepingImageNames (the batch tools). */
+osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions,
+                                   bool keepImageNames = false);
+
+/** loadModels, or without models the demo city generated from readerOptions (CityParameters
+ *  syntax; a bad parameter is a UsageError). what: "'a.osgb + b.osgb'" or "the demo city (seed
+ *  S, WxH blocks)", for messages. */
+osg::ref_ptr<osg::Node> loadModelsOrDemoCity(const std::vector<std::string>& paths,
+                                             const std::string& readerOptions, std::string& what);
 
 /** How the batch tools name a texture in messages: its image's file name, else the image's name,
  *  else "texture 'NAME'", else "texture #index+1 (unnamed)". */
@@ -115,20 +99,12 @@ void applyCamera(osgLoA::OffscreenRenderer& renderer, const CameraChoice& choice
  *  evaluate from the camera without rendering). Throws std::runtime_error for an empty scene
  *  when no camera is named or given. */
 osgLoA::CameraPose cameraPose(const CameraChoice& choice, osg::Node& scene, double aspect);
-/** Consumes --camera NAME, --eye, --center, --up (option `a` already taken from args);
- *  false when `a` is none of them. */
-bool parseCameraOption(const std::string& a, Args& args, CameraChoice& choice);
 /** Throws UsageError for contradictory camera options, an --eye equal to --center, and an --up
  *  parallel to the view direction. */
 void checkCameraOptions(const CameraChoice& choice);
-/** --help/-h prints help, --version "<tool> <version>"; both exit 0. Returns for any other word. */
-void exitOnHelpOrVersion(const std::string& a, const char* tool, const std::string& help);
-/** The help lines for the camera options. */
-extern const char* const kCameraHelp;
 
-/** --rules FILE (repeatable: added before the default rules), --rules-only FILE (repeatable:
- *  instead of them), --override: the classification every tool shares
- *  (ClassificationRuleSet::assemble). */
+/** The classification every tool shares (--rules, --rules-only, --override;
+ *  ClassificationRuleSet::assemble). */
 struct RulesChoice
 {
     std::vector<std::string> files;
@@ -137,10 +113,6 @@ struct RulesChoice
     /** The rule set; throws std::runtime_error naming an unreadable file. */
     osg::ref_ptr<osgLoA::ClassificationRuleSet> assemble() const;
 };
-/** Consumes --rules, --rules-only, --override; false when `a` is none of them. A mix of
- *  --rules and --rules-only is a UsageError. */
-bool parseRulesOption(const std::string& a, Args& args, RulesChoice& choice);
-extern const char* const kRulesHelp;
 
 } // namespace loa
 

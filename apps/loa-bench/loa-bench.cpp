@@ -1,5 +1,6 @@
 // loa-bench: named benchmark cases; each writes CSV rows to docs/bench/<case>.csv.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 #include "BenchCase.h"
 
 #include <osgLoA/Version>
@@ -32,8 +33,7 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-bench [--case NAME]... [--frames N] [--out-dir DIR] [--list]
-
+const char* kDescription = R"(
 Runs benchmark cases headless and writes one CSV per case to DIR/<case>.csv (default
 docs/bench), with columns
   case,parameters,frames,median_ms,min_ms,max_ms,error_mean,error_max,machine
@@ -103,11 +103,6 @@ cases:
                  textures of 128x128, as textures per second: OpenCV, our GPU, our CPU on all
                  cores, and the flow-based version on the GPU
 
-options:
-  --case NAME    run this case (repeatable; default: all)
-  --frames N     timed frames per configuration (default 10)
-  --out-dir DIR  where the CSVs go (default docs/bench)
-  --list         list the cases and exit
 )";
 
 std::vector<Row> plainRender(unsigned frames, std::string& renderer)
@@ -435,35 +430,36 @@ int main(int argc, char** argv)
             std::vector<std::string> chosen;
             unsigned frames = 10;
             std::string outDir = "docs/bench";
-            loa::Args args(argc, argv);
-            while (!args.empty())
+            bool list = false;
+            loa::CommandLine cl("loa-bench",
+                                "loa-bench [--case NAME]... [--frames N] [--out-dir DIR] [--list]",
+                                kDescription);
+            CLI::App& app = cl.app();
+            loa::addOutDir(app, outDir, "where the CSVs go (default docs/bench)");
+            app.add_option_function<std::vector<std::string>>(
+                   "--case",
+                   [&](const std::vector<std::string>& names)
+                   {
+                       for (const std::string& name : names)
+                       {
+                           bool known = false;
+                           for (const auto& c : cases)
+                               known = known || c.first == name;
+                           if (!known) throw loa::UsageError("unknown case '" + name + "' (see --list)");
+                           chosen.push_back(name);
+                       }
+                   },
+                   "run this case (repeatable; default: all)")
+                ->type_name("NAME")
+                ->allow_extra_args(false);
+            loa::addCount(app, "--frames", frames, 1, 10000, "timed frames per configuration (default 10)");
+            app.add_flag("--list", list, "list the cases and exit");
+            cl.parse(argc, argv);
+            if (list)
             {
-                const std::string a = args.next();
-                loa::exitOnHelpOrVersion(a, "loa-bench", kHelp);
-                if (a == "--list")
-                {
-                    for (const auto& c : cases)
-                        std::cout << c.first << "\n";
-                    return loa::kOk;
-                }
-                else if (a == "--case")
-                {
-                    const std::string name = args.value(a);
-                    bool known = false;
-                    for (const auto& c : cases)
-                        known = known || c.first == name;
-                    if (!known) throw loa::UsageError("unknown case '" + name + "' (see --list)");
-                    chosen.push_back(name);
-                }
-                else if (a == "--frames")
-                {
-                    frames = loa::parseCount(a, args.value(a), 10000);
-                    if (frames == 0) throw loa::UsageError("--frames must be at least 1");
-                }
-                else if (a == "--out-dir")
-                    outDir = args.value(a);
-                else
-                    throw loa::UsageError("unknown argument '" + a + "' (see --help)");
+                for (const auto& c : cases)
+                    std::cout << c.first << "\n";
+                return loa::kOk;
             }
             const osgLoA::MachineInfo machine = osgLoA::MachineInfo::query();
             std::vector<std::string> failedFrames;

@@ -1,5 +1,6 @@
 // loa-citygen: writes the built-in demo city to any format osgDB writes.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 
 #include <osgLoA/Version>
 #include <osgLoA/city/CityGenerator>
@@ -16,21 +17,13 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-citygen OUTPUT [--city "K=V ..."] [--seed N] [--small]
-
-Generates the demo city and writes it to OUTPUT in any format osgDB writes, chosen by the
-extension: .osgb, .osgt, .osgx (textures embedded), .obj (with .mtl and the PNG textures
-beside it), .ive, ... The write is atomic: OUTPUT and its side files appear complete or not
-at all.
-
-options:
-  --city "K=V ..."  generator parameters, e.g. "seed=7 blocksX=6 blocksY=4 river=false"
-                    (all keys: docs/demo-city.md)
-  --seed N          shorthand for --city seed=N
-  --small           start from the small test city (4x3 blocks) instead of the default
-  --help            this text
-
-exit status: 0 written, 1 write failed, 2 bad arguments.
+const char* kDescription =
+    R"(Generates the demo city and writes it to the --out FILE in any format osgDB writes, chosen by
+the extension: .osgb, .osgt, .osgx (textures embedded), .obj (with .mtl and the PNG textures
+beside it), .ive, ... The write is atomic: FILE and its side files appear complete or not at
+all.
+)";
+const char* kFooter = R"(exit status: 0 written, 1 write failed, 2 bad arguments.
 )";
 
 } // namespace
@@ -43,25 +36,22 @@ int main(int argc, char** argv)
         {
             std::string output, city;
             bool small = false;
-            loa::Args args(argc, argv);
-            while (!args.empty())
-            {
-                const std::string a = args.next();
-                loa::exitOnHelpOrVersion(a, "loa-citygen", kHelp);
-                if (a == "--city")
-                    city += " " + args.value(a);
-                else if (a == "--seed")
-                    city += " seed=" + std::to_string(loa::parseCount(a, args.value(a), 4294967295u));
-                else if (a == "--small")
-                    small = true;
-                else if (!a.empty() && a[0] == '-')
-                    throw loa::UsageError("unknown option '" + a + "' (see --help)");
-                else if (output.empty())
-                    output = a;
-                else
-                    throw loa::UsageError("more than one output given");
-            }
-            if (output.empty()) throw loa::UsageError("no OUTPUT file given (see --help)");
+            loa::CommandLine cl("loa-citygen", "loa-citygen --out FILE [-O \"K=V ...\"] [--seed N] [--small]",
+                                kDescription);
+            CLI::App& app = cl.app();
+            loa::addReaderOptions(app, city);
+            loa::addOutFile(app, output, "the model file to write (required)");
+            app.add_option_function<std::string>(
+                   "--seed",
+                   [&](const std::string& t)
+                   { city += " seed=" + std::to_string(loa::parseCount("--seed", t, 4294967295u)); },
+                   "shorthand for -O seed=N")
+                ->type_name("N");
+            app.add_flag("--small", small,
+                         "start from the small test city (4x3 blocks) instead of the default");
+            cl.footer(kFooter);
+            cl.parse(argc, argv);
+            if (output.empty()) throw loa::UsageError("no --out FILE given (see --help)");
             const std::string ext = osgDB::getLowerCaseFileExtension(output);
             osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
             if (!rw || !(rw->supportedFeatures() & osgDB::ReaderWriter::FEATURE_WRITE_NODE))
@@ -76,7 +66,7 @@ int main(int argc, char** argv)
             }
             catch (const std::invalid_argument& e)
             {
-                throw loa::UsageError(std::string("--city: ") + e.what());
+                throw loa::UsageError(std::string("-O (demo city parameters): ") + e.what());
             }
             osg::ref_ptr<osg::Group> scene = osgLoA::CityGenerator(params).generate();
             const osgLoA::SceneStatistics stats = osgLoA::SceneStatistics::collect(*scene);

@@ -1,6 +1,7 @@
 // loa-classify: loads a model, classifies its features, prints the count per type, and can
 // render the debug view coloured by feature type (paper 004, Figure 3B).
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 
 #include <osgLoA/Version>
 #include <osgLoA/render/OffscreenRenderer>
@@ -24,38 +25,15 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-classify MODEL... [options]
-
-Loads MODEL (any file osgDB reads through the plugins: .cityjson, .city.json, .gml, .osm,
+const char* kDescription =
+    R"(Loads MODEL (any file osgDB reads through the plugins: .cityjson, .city.json, .gml, .osm,
 .osm.pbf, .osm.bz2, .osgb, .obj, demo.loacity ...), classifies its features and prints how many
 features of each type it holds; several MODELs are one scene, classified together. Features
 that the model data already typed keep their type; the rules classify the rest, and the
 appearance fallback what no rule matched (docs/classification.md).
-
-options:
 )";
-const char* kHelpMiddle =
-    R"(  --interest FILE       interest values per type and per feature id and the landmark threshold
-                        (an osgLoA::FeatureInterest in .osgt/.osgb; docs/landmarks.md)
-  --landmark-threshold T
-                        features with interest >= T (in [0,1]) are landmarks (default: the
-                        landmarks the model data flags)
-  --best-views          compute each landmark's best view by viewpoint entropy (headless GL)
-                        and print it
-  --json                print one JSON object: {"building": n, "street": n, "water": n,
-                        "green": n, "terrain": n, "generic": n, "landmarks": n}
-  --image FILE.png      render the debug view coloured by feature type: building red, street
-                        grey, water blue, green space green, terrain sand, generic magenta,
-                        landmarks gold
-  --size WxH            size of that image (default 1024x768)
-)";
-const char* kHelpTail =
-    R"(  --save FILE           write the classified model (.osgb, .osgt, ...; written atomically)
-  --write-default-rules FILE
-                        write the built-in rule set to FILE (a starting point for your own)
-                        and exit
-  --version, --help
-exit status: 0 done, 1 the model, the rules or an output could not be read or written,
+const char* kFooter =
+    R"(exit status: 0 done, 1 the model, the rules or an output could not be read or written,
 2 bad arguments, 3 no usable EGL/OpenGL context (only with --image).
 )";
 
@@ -66,51 +44,56 @@ struct Options
     loa::RulesChoice rules;
     bool json = false, bestViews = false;
     float landmarkThreshold = -1.0f;
-    int width = 1024, height = 768;
+    int width = loa::kDefaultWidth, height = loa::kDefaultHeight;
     loa::CameraChoice camera;
 };
 
 Options parse(int argc, char** argv)
 {
     Options o;
-    loa::Args args(argc, argv);
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-classify",
-                                 std::string(kHelp) + loa::kReaderOptionsHelp + loa::kRulesHelp +
-                                     kHelpMiddle + loa::kCameraHelp + kHelpTail);
-        if (loa::parseCameraOption(a, args, o.camera))
-            continue;
-        else if (loa::parseRulesOption(a, args, o.rules))
-            continue;
-        else if (loa::parseReaderOption(a, args, o.readerOptions))
-            continue;
-        else if (a == "--interest")
-            o.interest = args.value(a);
-        else if (a == "--landmark-threshold")
-        {
-            const std::string v = args.value(a);
-            char* end = nullptr;
-            o.landmarkThreshold = std::strtof(v.c_str(), &end);
-            if (end == v.c_str() || *end || !(o.landmarkThreshold >= 0.0f && o.landmarkThreshold <= 1.0f))
-                throw loa::UsageError("--landmark-threshold '" + v + "' must be a number in [0,1]");
-        }
-        else if (a == "--best-views")
-            o.bestViews = true;
-        else if (a == "--json")
-            o.json = true;
-        else if (a == "--image")
-            o.image = args.value(a);
-        else if (a == "--size")
-            loa::parseSize(args.value(a), o.width, o.height);
-        else if (a == "--save")
-            o.save = args.value(a);
-        else if (a == "--write-default-rules")
-            o.writeRules = args.value(a);
-        else
-            loa::takeModelArguments(a, o.models, o.model);
-    }
+    loa::CommandLine cl("loa-classify", "loa-classify MODEL... [options]", kDescription);
+    CLI::App& app = cl.app();
+    loa::addModels(app, o.models, "the models to classify as one scene");
+    loa::addReaderOptions(app, o.readerOptions);
+    loa::addRules(app, o.rules);
+    loa::addCamera(app, o.camera);
+    loa::addSize(app, o.width, o.height, "the --image debug view");
+    app.add_option(
+           "--image", o.image,
+           "render the debug view coloured by feature type: building red, street grey, water blue, green "
+           "space green, terrain sand, generic magenta, landmarks gold")
+        ->type_name("FILE.png")
+        ->group(loa::kGroupOutput);
+    app.add_option("--save", o.save, "write the classified model (.osgb, .osgt, ...; written atomically)")
+        ->type_name("FILE")
+        ->group(loa::kGroupOutput);
+    app.add_option("--interest", o.interest,
+                   "interest values per type and per feature id and the landmark threshold (an "
+                   "osgLoA::FeatureInterest in .osgt/.osgb; docs/landmarks.md)")
+        ->type_name("FILE");
+    app.add_option_function<std::string>(
+           "--landmark-threshold",
+           [&o](const std::string& v)
+           {
+               char* end = nullptr;
+               o.landmarkThreshold = std::strtof(v.c_str(), &end);
+               if (end == v.c_str() || *end || !(o.landmarkThreshold >= 0.0f && o.landmarkThreshold <= 1.0f))
+                   throw loa::UsageError("--landmark-threshold '" + v + "' must be a number in [0,1]");
+           },
+           "features with interest >= T (in [0,1]) are landmarks (default: the landmarks the model data "
+           "flags)")
+        ->type_name("T");
+    app.add_flag("--best-views", o.bestViews,
+                 "compute each landmark's best view by viewpoint entropy (headless GL) and print it");
+    app.add_flag("--json", o.json,
+                 "print one JSON object: {\"building\": n, \"street\": n, \"water\": n, \"green\": n, "
+                 "\"terrain\": n, \"generic\": n, \"landmarks\": n}");
+    app.add_option("--write-default-rules", o.writeRules,
+                   "write the built-in rule set to FILE (a starting point for your own) and exit")
+        ->type_name("FILE");
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
+    o.model = loa::modelLabel(o.models);
     loa::checkCameraOptions(o.camera);
     if (o.writeRules.empty() && o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
     if (!o.image.empty() && osgDB::getLowerCaseFileExtension(o.image) != "png")

@@ -3,6 +3,7 @@
 // the filter applied to the rendered frame (Eq. 1: PostProcessFiltering), and writes the two
 // images for docs/filtering.md.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/filtering/FilterConfiguration>
@@ -22,36 +23,24 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-filter-compare --filter SPEC --out DIR [options]
-
-Renders the demo city (or MODEL) with the image filter SPEC ("NAME:key=value,...", see
---list-filters) in two ways and writes, into DIR,
+const char* kDescription =
+    R"(Renders the demo city (or MODEL...) with the image filter SPEC ("NAME:key=value,...", see
+--list-filters) in two ways and writes, into the --out-dir DIR,
   filtering-NAME-per-level.png     textures filtered per mip level before texture mapping
                                    (paper 000 Eq. 2, perspective-coherent)
   filtering-NAME-post-process.png  the rendered frame filtered (Eq. 1, the baseline)
 where NAME is the filter's name (with --name, any other word).
-
-options:
-  --filter SPEC         the filter (required); it needs GPU passes for the post-process image
-  --out DIR             the output directory (required; created if missing)
-  --size WxH            image size (default 640x360)
-  --name WORD           the NAME in the file names (default: the filter's name)
-  --model FILE          render FILE instead of the demo city
-  --city "K=V ..."      demo city parameters (docs/demo-city.md)
-  --anisotropy N        anisotropic texture filtering, 1..16 probes, in both images (default 16)
-  --cpu                 filter the textures with the CPU references instead of the GPU
-  --list-filters        print the registered filters and exit (as loa-prefilter does)
 )";
-const char* kHelpEnd = R"(  --help, --version
-
-The camera defaults to "horizon" (the texture gradient of the ground recedes to the horizon).
+const char* kFooter =
+    R"(The camera defaults to "horizon" (the texture gradient of the ground recedes to the horizon).
 exit status: 0 done, 1 a filter, model or output failed, 2 bad arguments, 3 no EGL/OpenGL.
 )";
 
 struct Options
 {
-    std::string filter, out, name, model, city;
-    int width = 640, height = 360;
+    std::vector<std::string> models;
+    std::string filter, out, name, readerOptions;
+    int width = loa::kDefaultWidth, height = loa::kDefaultHeight;
     unsigned anisotropy = 16;
     bool cpu = false;
     loa::CameraChoice camera;
@@ -60,43 +49,27 @@ struct Options
 Options parse(int argc, char** argv)
 {
     Options o;
-    loa::Args args(argc, argv);
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-filter-compare", std::string(kHelp) + loa::kCameraHelp + kHelpEnd);
-        if (loa::parseCameraOption(a, args, o.camera))
-            continue;
-        else if (a == "--filter")
-            o.filter = args.value(a);
-        else if (a == "--out")
-            o.out = args.value(a);
-        else if (a == "--size")
-            loa::parseSize(args.value(a), o.width, o.height);
-        else if (a == "--name")
-            o.name = args.value(a);
-        else if (a == "--list-filters")
-        {
-            for (const std::string& n : osgLoA::FilterRegistry::names())
-                std::cout << n << "  " << osgLoA::FilterRegistry::description(n) << "\n";
-            std::exit(loa::kOk);
-        }
-        else if (a == "--model")
-            o.model = args.value(a);
-        else if (a == "--city")
-            o.city = args.value(a);
-        else if (a == "--anisotropy")
-        {
-            o.anisotropy = loa::parseCount(a, args.value(a), 16);
-            if (o.anisotropy < 1) throw loa::UsageError("--anisotropy must be 1..16");
-        }
-        else if (a == "--cpu")
-            o.cpu = true;
-        else
-            throw loa::UsageError("unknown option '" + a + "' (see --help)");
-    }
+    loa::CommandLine cl("loa-filter-compare",
+                        "loa-filter-compare [MODEL...] --filter SPEC --out-dir DIR [options]", kDescription);
+    CLI::App& app = cl.app();
+    loa::addModels(app, o.models, "the models to render as one scene (default: the demo city)");
+    loa::addReaderOptions(app, o.readerOptions);
+    loa::addCamera(app, o.camera);
+    loa::addSize(app, o.width, o.height, "each image");
+    loa::addOutDir(app, o.out, "the output directory (required; created if missing)");
+    app.add_option("--filter", o.filter,
+                   "the filter (required); it needs GPU passes for the post-process image")
+        ->type_name("SPEC");
+    app.add_option("--name", o.name, "the NAME in the file names (default: the filter's name)")
+        ->type_name("WORD");
+    loa::addCount(app, "--anisotropy", o.anisotropy, 1, 16,
+                  "anisotropic texture filtering, 1..16 probes, in both images (default 16)");
+    app.add_flag("--cpu", o.cpu, "filter the textures with the CPU references instead of the GPU");
+    loa::addListFilters(app, "print the registered filters and exit (as loa-prefilter does)");
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
     if (o.filter.empty()) throw loa::UsageError("--filter SPEC is required");
-    if (o.out.empty()) throw loa::UsageError("--out DIR is required");
+    if (o.out.empty()) throw loa::UsageError("--out-dir DIR is required");
     loa::checkCameraOptions(o.camera);
     if (o.camera.name.empty() && !o.camera.haveEye) o.camera.name = "horizon";
     if (o.name.find_first_of("/\\ ") != std::string::npos)
@@ -106,18 +79,8 @@ Options parse(int argc, char** argv)
 
 osg::ref_ptr<osg::Node> scene(const Options& o)
 {
-    if (!o.model.empty()) return loa::loadModel(o.model);
-    osgLoA::CityParameters params;
-    try
-    {
-        params.parse(o.city);
-        params.validate();
-    }
-    catch (const std::invalid_argument& e)
-    {
-        throw loa::UsageError(std::string("--city: ") + e.what());
-    }
-    return osgLoA::CityGenerator(params).generate();
+    std::string what;
+    return loa::loadModelsOrDemoCity(o.models, o.readerOptions, what);
 }
 
 /** Every texture of the scene samples with `anisotropy` probes (both images alike). */

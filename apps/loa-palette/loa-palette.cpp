@@ -2,6 +2,7 @@
 // scenes", Figure 1) for every texture of a model: the texture-object histogram, the hierarchy of
 // colour merges, and per requested level the segmented texture and the selected colours.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 #include "../common/ProgressBar.h"
 
 #include <osgLoA/filtering/FilterImage>
@@ -33,10 +34,9 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-palette MODEL --out DIR [options]
-
-Loads MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, demo.loacity ...) and, for
-every distinct image of a 2D texture on unit 0, computes the colour segmentation of paper 003
+const char* kDescription =
+    R"(Loads MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, demo.loacity ...; several are
+one scene) and, for every distinct image of a 2D texture on unit 0, computes the colour segmentation of paper 003
 (Suarez, Belhadj & Boyer, "GPU texture level of abstraction in 3D scenes"):
   1. the texel weights: how much each texel is used by the geometry that shows the texture
      (per mesh, the sum over covering triangles of P_o x P_t, object- and texture-space area
@@ -49,7 +49,7 @@ every distinct image of a 2D texture on unit 0, computes the colour segmentation
      triangle covers) are in no cluster: they get the nearest level-k colour in CIELab (CIE76).
      Alpha is kept as it is.
 
-Writes into DIR (created if missing; every file written atomically):
+Writes into the --out-dir DIR (created if missing; every file written atomically):
   NAME-K.png            the segmented texture at level K, the texture's size (RGB, or RGBA
                         when the texture has alpha)
   NAME-histogram.png    the colour table as vertical bars sorted by weight (height
@@ -62,22 +62,9 @@ Writes into DIR (created if missing; every file written atomically):
 NAME is the image's file name without directory and extension (else the image's or the
 texture's name), reduced to letters, digits, '.', '-', '_' and made unique with _2, _3 ...
 
-options:
-  --out DIR             the output directory (required)
-  --levels LIST         comma-separated levels, each 1..65536 (default 4,8,16,32); a level
-                        above a texture's number of colours n gives its n colours (noted;
-                        the file keeps the requested number)
-  --linkage NAME        ward (default: merges the pair that least increases the weighted
-                        within-cluster variance) or centroid (the closest pair, paper 003)
-  --gpu                 compute the texel weights on the GPU (headless EGL), as the paper does
-  --max-colors N        skip textures whose colour table holds more than N colours (default
-                        65536; the hierarchy takes O(n^2) time)
-  -O TEXT, --options TEXT
-                        reader options for MODEL (e.g. "seed=3 blocksX=4" for demo.loacity)
-  --quiet               print only errors, notes and skipped textures
-  --version, --help
-
-Progress goes to stderr: a bar (textures done/total, ETA) when stderr is a terminal, one line
+)";
+const char* kFooter =
+    R"(Progress goes to stderr: a bar (textures done/total, ETA) when stderr is a terminal, one line
 per texture otherwise. Luminance, luminance-alpha, 16-bit, float and S3TC (DXT) images are
 converted to 8-bit RGB(A) first. Unusable images (missing or corrupt files, 0x0 images, other
 compressed or packed formats, tables above --max-colors, no texel of non-zero weight) are
@@ -93,6 +80,7 @@ constexpr unsigned kMaxLevel = 65536;
 
 struct Options
 {
+    std::vector<std::string> models;
     std::string model, out, readerOptions;
     std::vector<unsigned> levels{4, 8, 16, 32};
     osgLoA::PaletteHierarchy::Linkage linkage = osgLoA::PaletteHierarchy::WARD;
@@ -128,42 +116,40 @@ std::vector<unsigned> parseLevels(const std::string& text)
 Options parse(int argc, char** argv)
 {
     Options o;
-    loa::Args args(argc, argv);
-    if (args.empty()) throw loa::UsageError("no MODEL given (see --help)");
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-palette", kHelp);
-        if (a == "--out")
-            o.out = args.value(a);
-        else if (a == "--levels")
-            o.levels = parseLevels(args.value(a));
-        else if (a == "--linkage")
-        {
-            const std::string v = args.value(a);
-            if (v == "ward")
-                o.linkage = osgLoA::PaletteHierarchy::WARD;
-            else if (v == "centroid")
-                o.linkage = osgLoA::PaletteHierarchy::CENTROID;
-            else
-                throw loa::UsageError("--linkage '" + v + "' is not ward or centroid");
-        }
-        else if (a == "--gpu")
-            o.gpu = true;
-        else if (a == "--max-colors")
-        {
-            o.maxColors = loa::parseCount(a, args.value(a), 1u << 24);
-            if (o.maxColors == 0) throw loa::UsageError("--max-colors must be at least 1");
-        }
-        else if (a == "-O" || a == "--options")
-            o.readerOptions += (o.readerOptions.empty() ? "" : " ") + args.value(a);
-        else if (a == "--quiet")
-            o.quiet = true;
-        else
-            loa::takeModelArgument(a, o.model);
-    }
+    loa::CommandLine cl("loa-palette", "loa-palette MODEL... --out-dir DIR [options]", kDescription);
+    CLI::App& app = cl.app();
+    loa::addModels(app, o.models, "the models whose textures to segment (one scene)");
+    loa::addReaderOptions(app, o.readerOptions);
+    loa::addOutDir(app, o.out, "the output directory (required; created if missing)");
+    app.add_option_function<std::string>(
+           "--levels", [&o](const std::string& t) { o.levels = parseLevels(t); },
+           "comma-separated levels, each 1..65536 (default 4,8,16,32); a level above a texture's number of "
+           "colours n gives its n colours (noted; the file keeps the requested number)")
+        ->type_name("LIST");
+    app.add_option_function<std::string>(
+           "--linkage",
+           [&o](const std::string& v)
+           {
+               if (v == "ward")
+                   o.linkage = osgLoA::PaletteHierarchy::WARD;
+               else if (v == "centroid")
+                   o.linkage = osgLoA::PaletteHierarchy::CENTROID;
+               else
+                   throw loa::UsageError("--linkage '" + v + "' is not ward or centroid");
+           },
+           "ward (default: merges the pair that least increases the weighted within-cluster variance) or "
+           "centroid (the closest pair, paper 003)")
+        ->type_name("NAME");
+    app.add_flag("--gpu", o.gpu, "compute the texel weights on the GPU (headless EGL), as the paper does");
+    loa::addCount(app, "--max-colors", o.maxColors, 1, 1u << 24,
+                  "skip textures whose colour table holds more than N colours (default 65536; the hierarchy "
+                  "takes O(n^2) time)");
+    app.add_flag("--quiet", o.quiet, "print only errors, notes and skipped textures");
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
+    o.model = loa::modelLabel(o.models);
     if (o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
-    if (o.out.empty()) throw loa::UsageError("--out DIR is required (the output directory)");
+    if (o.out.empty()) throw loa::UsageError("--out-dir DIR is required (the output directory)");
     return o;
 }
 
@@ -397,14 +383,15 @@ int run(const Options& o)
 {
     // The output directory first: a run that cannot write should fail before the work.
     if (osgDB::fileExists(o.out) && osgDB::fileType(o.out) != osgDB::DIRECTORY)
-        throw std::runtime_error("--out '" + o.out + "' exists and is not a directory");
+        throw std::runtime_error("--out-dir '" + o.out + "' exists and is not a directory");
     if (!osgDB::makeDirectory(o.out) || osgDB::fileType(o.out) != osgDB::DIRECTORY)
         throw std::runtime_error("cannot create the output directory '" + o.out + "'");
     if (::access(o.out.c_str(), W_OK | X_OK) != 0)
         throw std::runtime_error("the output directory '" + o.out + "' is not writable");
+    const std::string& staging = o.out;
 
     // An image file that cannot be read leaves an empty image carrying its name (reported below).
-    osg::ref_ptr<osg::Node> scene = loa::loadModelKeepingImageNames(o.model, o.readerOptions);
+    osg::ref_ptr<osg::Node> scene = loa::loadModels(o.models, o.readerOptions, true);
 
     // Every distinct image of a 2D texture on unit 0, in traversal order.
     std::vector<Unit> units;
@@ -626,7 +613,7 @@ int run(const Options& o)
                 bytes.push_back(toBytes(c.rgb));
             osg::ref_ptr<osg::Image> segmented = segment(image, tableIndex, hierarchy->assignment(level.k),
                                                          bytes, hierarchy->paletteLab(level.k));
-            osgLoA::ImageFile::write(o.out + "/" + u.name + "-" + std::to_string(requested) + ".png",
+            osgLoA::ImageFile::write(staging + "/" + u.name + "-" + std::to_string(requested) + ".png",
                                      *segmented);
             levels.push_back(level);
         }
@@ -635,7 +622,7 @@ int run(const Options& o)
                              (clamped.find(',') != std::string::npos ? "s " : " ") + clamped + " give" +
                              (clamped.find(',') != std::string::npos ? "" : "s") + " all " +
                              std::to_string(n));
-        osgLoA::ImageFile::write(o.out + "/" + u.name + "-histogram.png", *histogramChart(table, levels));
+        osgLoA::ImageFile::write(staging + "/" + u.name + "-histogram.png", *histogramChart(table, levels));
 
         json << (done ? ",\n" : "\n") << "    {\n      \"name\": \"" << osgLoA::jsonEscape(u.name)
              << "\",\n      \"source\": \"" << osgLoA::jsonEscape(u.label)
@@ -667,7 +654,7 @@ int run(const Options& o)
     progress.finish();
     json << (done ? "\n  ],\n" : "],\n") << "  \"skipped\": [" << skippedJson.str()
          << (skipped ? "\n  ]\n}\n" : "]\n}\n");
-    osgLoA::AtomicFile::writeText(o.out + "/palettes.json", json.str());
+    osgLoA::AtomicFile::writeText(staging + "/palettes.json", json.str());
 
     std::string levelList;
     for (unsigned k : o.levels)

@@ -3,6 +3,7 @@
 // level separately ... once per model") into the filter cache, and can write the model with
 // the filtered textures.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 #include "../common/ProgressBar.h"
 
 #include <osgLoA/filtering/FilterCache>
@@ -32,38 +33,21 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-prefilter MODEL --filter NAME[:key=value,...] --out DIR [options]
-
-Loads MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, demo.loacity ...), collects
-the image of every 2D texture, and filters each one level by level: the image's mip pyramid
-(area-weighted 2x box downsampling to 1x1) is built and every level is filtered separately,
-with the texture's wrap modes at its borders (paper 000 Eq. 2). The filtered pyramids are
-stored in the filter cache DIR, where MipmapFilter (and so the viewer) finds them; images
-already there are not filtered again. Textures with the same pixels and wrap modes are one
-image. The work is spread over threads, and over machines with --shard.
-
-options:
-  --filter SPEC         the filter: NAME or NAME:key=value,... or a chain A+B (see the list
-                        below; parameters as docs/filtering.md)
-  --out DIR             the filter cache directory (created if missing)
-  --jobs N              worker threads (default: all cores)
-  --shard I/N           filter only shard I of N (I = 0..N-1): the images, sorted by their
-                        cache key, are dealt out in turn; shards 0/N .. N-1/N together do
-                        exactly what one run without --shard does
-  --export FILE         write the model with the filtered textures (each image carrying its
-                        filtered mip levels) to FILE, atomically; FILE must be .osgb (which
-                        keeps the levels; the tool reads it back to check). Not with --shard.
-  --gpu                 filter on the GPU (headless EGL) when the filter has GPU passes
-  --max-size N          skip images wider or taller than N texels (default 8192)
-  -O TEXT, --options TEXT
-                        reader options for MODEL (e.g. "seed=3 blocksX=4" for demo.loacity)
-  --list-filters        print the registered filters and exit
-  --version, --help
-
-Progress goes to stderr: a bar (images done/total, rate, ETA) when stderr is a terminal, one
+const char* kDescription =
+    R"(Loads MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, demo.loacity ...; several are
+one scene), collects the image of every 2D texture, and filters each one level by level: the
+image's mip pyramid (area-weighted 2x box downsampling to 1x1) is built and every level is
+filtered separately, with the texture's wrap modes at its borders (paper 000 Eq. 2). The
+filtered pyramids are stored in the filter cache, where MipmapFilter (and so loa-render and the
+viewer) finds them; images already there are not filtered again. Textures with the same pixels
+and wrap modes are one image. The work is spread over threads, and over machines with --shard.
+)";
+const char* kFooter =
+    R"(Progress goes to stderr: a bar (images done/total, rate, ETA) when stderr is a terminal, one
 line per image otherwise. Unreadable images (corrupt or missing files, 0x0 images, sizes above
 --max-size, formats a filter cannot read: compressed other than S3TC/DXT, packed, 3D) are
-reported by name and skipped. The last line counts the images filtered, found in the cache and skipped.
+reported by name and skipped. The last line counts the images filtered, found in the cache and
+skipped.
 
 exit status: 0 every image filtered or cached, 1 the model could not be read, the cache could
 not be written or the export failed, 2 bad arguments, 3 no usable EGL/OpenGL context (--gpu),
@@ -74,7 +58,8 @@ constexpr int kSkipped = 4;
 
 struct Options
 {
-    std::string model, filter, out, exportPath, readerOptions;
+    std::vector<std::string> models;
+    std::string model, filter, cache, exportPath, readerOptions;
     unsigned jobs = 0, shardIndex = 0, shardCount = 1, maxSize = 8192;
     bool gpu = false, haveShard = false;
 };
@@ -98,46 +83,42 @@ void parseShard(const std::string& text, Options& o)
 Options parse(int argc, char** argv)
 {
     Options o;
-    loa::Args args(argc, argv);
-    if (args.empty()) throw loa::UsageError("no MODEL given (see --help)");
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-prefilter", kHelp);
-        if (a == "--filter")
-            o.filter = args.value(a);
-        else if (a == "--out")
-            o.out = args.value(a);
-        else if (a == "--jobs")
-        {
-            o.jobs = loa::parseCount(a, args.value(a), 1024);
-            if (o.jobs == 0) throw loa::UsageError("--jobs must be at least 1");
-        }
-        else if (a == "--shard")
-            parseShard(args.value(a), o);
-        else if (a == "--export")
-            o.exportPath = args.value(a);
-        else if (a == "--gpu")
-            o.gpu = true;
-        else if (a == "--max-size")
-        {
-            o.maxSize = loa::parseCount(a, args.value(a), unsigned(osgLoA::FilterImage::maxDimension()));
-            if (o.maxSize == 0) throw loa::UsageError("--max-size must be at least 1");
-        }
-        else if (a == "-O" || a == "--options")
-            o.readerOptions += (o.readerOptions.empty() ? "" : " ") + args.value(a);
-        else if (a == "--list-filters")
-        {
-            for (const std::string& n : osgLoA::FilterRegistry::names())
-                std::cout << n << "  " << osgLoA::FilterRegistry::description(n) << "\n";
-            std::exit(loa::kOk);
-        }
-        else
-            loa::takeModelArgument(a, o.model);
-    }
+    loa::CommandLine cl("loa-prefilter", "loa-prefilter MODEL... --filter NAME[:key=value,...] [options]",
+                        kDescription);
+    CLI::App& app = cl.app();
+    loa::addModels(app, o.models, "the models whose textures to filter (one scene)");
+    loa::addReaderOptions(app, o.readerOptions);
+    app.add_option("--cache", o.cache,
+                   "the filter cache directory (created if missing; default $OSGLOA_FILTER_CACHE, else "
+                   "~/.cache/osgLoA/filters: where loa-render and the loa plugin look)")
+        ->type_name("DIR")
+        ->group(loa::kGroupOutput);
+    app.add_option(
+           "--export", o.exportPath,
+           "write the model with the filtered textures (each image carrying its filtered mip levels) "
+           "to FILE, atomically; FILE must be .osgb (which keeps the levels; the tool reads it back to "
+           "check). Not with --shard")
+        ->type_name("FILE.osgb")
+        ->group(loa::kGroupOutput);
+    app.add_option("--filter", o.filter,
+                   "the filter: NAME or NAME:key=value,... or a chain A+B (--list-filters lists them; "
+                   "parameters as docs/filtering.md)")
+        ->type_name("SPEC");
+    loa::addCount(app, "--jobs", o.jobs, 1, 1024, "worker threads (default: all cores)");
+    app.add_option_function<std::string>(
+           "--shard", [&o](const std::string& t) { parseShard(t, o); },
+           "filter only shard I of N (I = 0..N-1): the images, sorted by their cache key, are dealt out in "
+           "turn; shards 0/N .. N-1/N together do exactly what one run without --shard does")
+        ->type_name("I/N");
+    app.add_flag("--gpu", o.gpu, "filter on the GPU (headless EGL) when the filter has GPU passes");
+    loa::addCount(app, "--max-size", o.maxSize, 1, unsigned(osgLoA::FilterImage::maxDimension()),
+                  "skip images wider or taller than N texels (default 8192)");
+    loa::addListFilters(app, "print the registered filters and exit");
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
+    o.model = loa::modelLabel(o.models);
     if (o.model.empty()) throw loa::UsageError("no MODEL given (see --help)");
     if (o.filter.empty()) throw loa::UsageError("--filter is required (see --list-filters)");
-    if (o.out.empty()) throw loa::UsageError("--out DIR is required (the filter cache directory)");
     if (!o.exportPath.empty())
     {
         if (osgDB::getLowerCaseFileExtension(o.exportPath) != "osgb")
@@ -174,11 +155,11 @@ int run(const Options& o)
     }
     const std::string parameters = filter->getParameterString();
 
-    osg::ref_ptr<osgLoA::FilterCache> cache = new osgLoA::FilterCache(o.out);
+    osg::ref_ptr<osgLoA::FilterCache> cache = new osgLoA::FilterCache(o.cache);
     cache->checkWritable();
 
     // An image file that cannot be read leaves an empty image carrying its name (reported below).
-    osg::ref_ptr<osg::Node> scene = loa::loadModelKeepingImageNames(o.model, o.readerOptions);
+    osg::ref_ptr<osg::Node> scene = loa::loadModels(o.models, o.readerOptions, true);
 
     // Every distinct osg::Texture2D, in traversal order.
     std::vector<osg::ref_ptr<osg::Texture2D>> textures;

@@ -1,5 +1,6 @@
 // loa-render: renders a model (or the built-in demo city) headless through EGL to a PNG.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 
 #include <osgLoA/Version>
 #include <osgLoA/abstraction/AbstractionNode>
@@ -33,70 +34,26 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-render [MODEL...] [options]
-
-Renders MODEL (any file osgDB reads: .osgb, .osgt, .obj, ...) headless through EGL into a PNG.
-Several MODELs are drawn as one scene. Without MODEL it renders the built-in demo city.
-
-options:
+const char* kDescription =
+    R"(Renders MODEL (any file osgDB reads: .osgb, .osgt, .obj, .cityjson, .gml, .osm, ...) headless
+through EGL into a PNG. Several MODELs are drawn as one scene. Without MODEL it renders the
+built-in demo city (parameters with -O).
 )";
-const char* kHelpOptions = R"(  --size WxH            image size in pixels (default 1280x720)
-  --samples N           multisample anti-aliasing with N samples (default 0; at most
-                        GL_MAX_SAMPLES, which is 4 on llvmpipe)
-  --frames N            render N timed frames after one warm-up frame and report the
-                        median and minimum frame time (each frame ends with glFinish)
-  --out FILE.png        where to write the image (default out/render.png)
-  --stats FILE.json     write frame times, scene statistics, GL renderer and machine as JSON;
-                        with --scenario or a LoA --style also the classified features per
-                        type, counted as loa-classify counts them
-  --city "K=V ..."      demo city parameters, e.g. "seed=7 blocksX=6 blocksY=4"
-                        (keys: see docs/demo-city.md); ignored with MODEL
-  --scenario NAME|FILE  draw with LoA transitions: wrap the scene in a LoA node carrying the
-                        usage scenario NAME of the library (loa-scenario list) or FILE
-                        (.osgt/.osgb/.osgx); the features are drawn in their configurations'
-                        graphic styles and composed by the stencil-routed A-buffer. The
-                        model's own features keep their types; the rest are classified by
-                        the default rules, as the loa plugin does. Styles that need
-                        per-texture data are prepared first, once per model (abstract:
-                        textures filtered per mip level into the filter cache,
-                        $OSGLOA_FILTER_CACHE or ~/.cache/osgLoA/filters; palette: palettes),
-                        with progress lines on stderr
-  --style NAME|FILE     draw in one graphic style: a style of --list-styles, or an
-                        abstraction style file (.osgt/.osgb/.osgx holding an
-                        osgLoA::AbstractionStyle). Image-space and hybrid styles (papers 001,
-                        002) render through an abstraction node; the other styles through a
-                        LoA node whose scenario draws every feature in that style
-  --list-styles         print every graphic style, one a line: its name and what it draws,
-                        and exit
-  --focus X,Y           focus point of adaptive styles in normalized window coordinates
-                        ((0,0) bottom left; default the style's, usually 0.5,0.5)
-  --focus-object ID     focus object: a feature id (or drawable number in scenes without
-                        features); 0 is the object under the focus point
-  --focus-world X,Y,Z   focus point in scene coordinates
-  --focus-radii IN,OUT  focus weight 1 within IN, 0 beyond OUT (fractions of the image
-                        diagonal)
-  --abuffer-samples N   A-buffer samples per pixel (default 4; at most GL_MAX_SAMPLES)
-  --abuffer-passes N    A-buffer routing passes at most (default 4)
-  --program plain       draw with the project's loa_plain GLSL program instead of OSG's
-                        fixed-function pipeline
-  --gl-info             print the GL context's capabilities and exit
-  --version             print the version and exit
-  --help                this text
-
-exit status: 0 done, 1 the model or an output could not be read or written or a shader
+const char* kFooter =
+    R"(exit status: 0 done, 1 the model or an output could not be read or written or a shader
 failed, 2 bad arguments, 3 no usable EGL/OpenGL context.
 )";
 
 struct Options
 {
     std::vector<std::string> models; ///< MODEL arguments (several: one scene)
-    std::string model, out = "out/render.png", stats, city, program, scenario, style;
+    std::string model, out = "out/render.png", stats, program, scenario, style;
     std::string focus, focusObject, focusWorld, focusRadii, readerOptions;
     bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
     loa::CameraChoice camera;
     loa::RulesChoice rules;
-    int width = 1280, height = 720, samples = 0;
+    int width = loa::kDefaultWidth, height = loa::kDefaultHeight, samples = 0;
     unsigned frames = 0;
     bool glInfo = false;
 };
@@ -104,60 +61,79 @@ struct Options
 Options parse(int argc, char** argv)
 {
     Options o;
-    loa::Args args(argc, argv);
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        loa::exitOnHelpOrVersion(a, "loa-render",
-                                 std::string(kHelp) + loa::kReaderOptionsHelp + loa::kCameraHelp +
-                                     kHelpOptions + loa::kRulesHelp);
-        if (loa::parseCameraOption(a, args, o.camera))
-            continue;
-        else if (loa::parseRulesOption(a, args, o.rules))
-            continue;
-        else if (loa::parseReaderOption(a, args, o.readerOptions))
-            continue;
-        else if (a == "--size")
-            loa::parseSize(args.value(a), o.width, o.height);
-        else if (a == "--samples")
-            o.samples = static_cast<int>(loa::parseCount(a, args.value(a), 64));
-        else if (a == "--frames")
-            o.frames = loa::parseCount(a, args.value(a), 100000);
-        else if (a == "--out")
-            o.out = args.value(a);
-        else if (a == "--stats")
-            o.stats = args.value(a);
-        else if (a == "--city")
-            o.city = args.value(a);
-        else if (a == "--scenario")
-            o.scenario = args.value(a);
-        else if (a == "--style")
-            o.style = args.value(a);
-        else if (a == "--list-styles")
-            o.listStyles = true;
-        else if (a == "--focus")
-            o.focus = args.value(a);
-        else if (a == "--focus-object")
-            o.focusObject = args.value(a);
-        else if (a == "--focus-world")
-            o.focusWorld = args.value(a);
-        else if (a == "--focus-radii")
-            o.focusRadii = args.value(a);
-        else if (a == "--abuffer-samples")
-            o.samplesABuffer = loa::parseCount(a, args.value(a), 64);
-        else if (a == "--abuffer-passes")
-            o.passesABuffer = loa::parseCount(a, args.value(a), 63);
-        else if (a == "--program")
-        {
-            o.program = args.value(a);
-            if (o.program != "plain")
-                throw loa::UsageError("unknown --program '" + o.program + "' (known: plain)");
-        }
-        else if (a == "--gl-info")
-            o.glInfo = true;
-        else
-            loa::takeModelArguments(a, o.models, o.model);
-    }
+    loa::CommandLine cl("loa-render", "loa-render [MODEL...] [options]", kDescription);
+    CLI::App& app = cl.app();
+    loa::addModels(app, o.models, "the models to draw as one scene (default: the demo city)");
+    loa::addReaderOptions(app, o.readerOptions);
+    loa::addScenario(
+        app, o.scenario,
+        "draw with LoA transitions: wrap the scene in a LoA node carrying the usage scenario NAME of "
+        "the library (loa-scenario list) or FILE (.osgt/.osgb/.osgx); the features are drawn in their "
+        "configurations' graphic styles and composed by the stencil-routed A-buffer. The model's own "
+        "features keep their types; the rest are classified by the rules, as the loa plugin does. "
+        "Styles that need per-texture data are prepared first, once per model (abstract: textures "
+        "filtered per mip level into the filter cache, $OSGLOA_FILTER_CACHE or "
+        "~/.cache/osgLoA/filters; palette: palettes), with progress lines on stderr");
+    loa::addRules(app, o.rules);
+    loa::addCamera(app, o.camera);
+    loa::addSize(app, o.width, o.height, "the image");
+    loa::addOutFile(app, o.out, "the PNG image to write (default out/render.png)");
+    app.add_option(
+           "--stats", o.stats,
+           "write frame times, scene statistics, GL renderer and machine as JSON; with --scenario or a "
+           "LoA --style also the classified features per type, counted as loa-classify counts them")
+        ->type_name("FILE.json")
+        ->group(loa::kGroupOutput);
+    app.add_option(
+           "--style", o.style,
+           "draw in one graphic style: a style of --list-styles, or an abstraction style file "
+           "(.osgt/.osgb/.osgx holding an osgLoA::AbstractionStyle). Image-space and hybrid styles "
+           "(papers 001, 002) render through an abstraction node; the other styles through a LoA node "
+           "whose scenario draws every feature in that style")
+        ->type_name("NAME|FILE");
+    app.add_flag("--list-styles", o.listStyles,
+                 "print every graphic style, one a line: its name and what it draws, and exit");
+    app.add_option(
+           "--focus", o.focus,
+           "focus point of adaptive styles in normalized window coordinates ((0,0) bottom left; default "
+           "the style's, usually 0.5,0.5)")
+        ->type_name("X,Y");
+    app.add_option(
+           "--focus-object", o.focusObject,
+           "focus object: a feature id (or drawable number in scenes without features); 0 is the object "
+           "under the focus point")
+        ->type_name("ID");
+    app.add_option("--focus-world", o.focusWorld, "focus point in scene coordinates")->type_name("X,Y,Z");
+    app.add_option("--focus-radii", o.focusRadii,
+                   "focus weight 1 within IN, 0 beyond OUT (fractions of the image diagonal)")
+        ->type_name("IN,OUT");
+    unsigned samples = 0;
+    loa::addCount(
+        app, "--samples", samples, 0, 64,
+        "multisample anti-aliasing with N samples (default 0; at most GL_MAX_SAMPLES, which is 4 on "
+        "llvmpipe)");
+    loa::addCount(
+        app, "--frames", o.frames, 0, 100000,
+        "render N timed frames after one warm-up frame and report the median and minimum frame time (each "
+        "frame ends with glFinish)");
+    loa::addCount(app, "--abuffer-samples", o.samplesABuffer, 1, 64,
+                  "A-buffer samples per pixel (default 4; at most GL_MAX_SAMPLES)");
+    loa::addCount(app, "--abuffer-passes", o.passesABuffer, 1, 63,
+                  "A-buffer routing passes at most (default 4)");
+    app.add_option_function<std::string>(
+           "--program",
+           [&o](const std::string& p)
+           {
+               if (p != "plain") throw loa::UsageError("unknown --program '" + p + "' (known: plain)");
+               o.program = p;
+           },
+           "plain: draw with the project's loa_plain GLSL program instead of OSG's fixed-function pipeline")
+        ->type_name("plain");
+    app.add_flag("--gl-info", o.glInfo, "print the GL context's capabilities and exit");
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
+    o.samples = static_cast<int>(samples);
+    o.model = loa::modelLabel(o.models);
     loa::checkCameraOptions(o.camera);
     if (!o.scenario.empty() && !o.program.empty())
         throw loa::UsageError(
@@ -167,8 +143,6 @@ Options parse(int argc, char** argv)
     if ((!o.focus.empty() || !o.focusObject.empty() || !o.focusWorld.empty() || !o.focusRadii.empty()) &&
         o.style.empty())
         throw loa::UsageError("--focus, --focus-object, --focus-world and --focus-radii need --style");
-    if (o.samplesABuffer == 0 || o.passesABuffer == 0)
-        throw loa::UsageError("--abuffer-samples and --abuffer-passes must be at least 1");
     if (osgDB::getLowerCaseFileExtension(o.out) != "png")
         throw loa::UsageError("--out '" + o.out + "' must name a .png file");
     return o;
@@ -295,27 +269,7 @@ int run(const Options& o)
     if (!glInfoOnly)
     {
         const auto g0 = std::chrono::steady_clock::now();
-        if (!o.model.empty())
-        {
-            scene = loa::loadModels(o.models, o.readerOptions);
-            what = "'" + o.model + "'";
-        }
-        else
-        {
-            osgLoA::CityParameters params;
-            try
-            {
-                params.parse(o.city);
-                params.validate();
-            }
-            catch (const std::invalid_argument& e)
-            {
-                throw loa::UsageError(std::string("--city: ") + e.what());
-            }
-            scene = osgLoA::CityGenerator(params).generate();
-            what = "the demo city (seed " + std::to_string(params.seed) + ", " +
-                   std::to_string(params.blocksX) + "x" + std::to_string(params.blocksY) + " blocks)";
-        }
+        scene = loa::loadModelsOrDemoCity(o.models, o.readerOptions, what);
         loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
     }
     osgLoA::OffscreenRenderer::Settings settings;

@@ -2,6 +2,7 @@
 // scenario libraries, shows and validates scenarios, creates and edits scenario files, and
 // explains what a scenario does to each feature of a model from a camera.
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 #include "InterestImage.h"
 
 #include <osgLoA/Version>
@@ -34,106 +35,95 @@ using osgLoA::SaliencyMetric;
 using osgLoA::TransitionConfiguration;
 using osgLoA::UsageScenario;
 
-const char* kHelp = R"(usage: loa-scenario COMMAND [arguments]
-
-Authoring tool for usage scenarios: how a city model is drawn for a task (paper 004 §3.1,
+const char* kDescription =
+    R"(Authoring tool for usage scenarios: how a city model is drawn for a task (paper 004 §3.1,
 §4.1). A SCENARIO argument is a library name (see `list`) or a scenario file (.osgt, .osgb,
 .osgx holding an osgLoA::UsageScenario). Full guide with examples: docs/loa-scenario.md.
-
-commands:
-  list [--json]
-      every scenario name the libraries and the built-ins offer, with its origin (file or
-      "built-in") and the first sentence of its description
-  show SCENARIO [--json]
-      description, interest overrides, regions, focus object, and per configuration its
-      scope, style, interpolation, combination, metrics, fade-in and fade-out, then the
-      validation result
-  validate SCENARIO...
-      checks each scenario: one line per error or warning, "FILE: error: ..." or
-      "FILE: warning: ..."; exit status 1 when any scenario has an error
-  create FILE [--from SCENARIO] [--description TEXT] [--force]
-      writes a new scenario file (atomically). --from copies a library, built-in or file
-      scenario. Without --from the new scenario has one configuration, 'photorealistic':
-      every feature type, style photorealistic, object interpolation, one feature-interest
-      metric (valid as it is; edit it with `set`). The scenario's name is FILE's base name.
-      Refuses to overwrite an existing FILE without --force.
-  set FILE EDIT... [--configuration NAME] [--model MODEL] [--force]
-      edits a scenario file in place (atomically), applying the edits in order, then
-      validates: when the result has errors it prints them, leaves FILE unchanged and exits
-      with status 1, unless --force. Edits:
-        scenario keys
-          description=TEXT
-          focus=ID | tallest | none       the focus object of focus metrics: a feature id, or
-                                          the tallest landmark of the model it is bound to
-          interest.TYPE=V | none          interest override for a feature type (building,
-                                          street, water, green, terrain, generic), V in [0,1]
-          interest.ID=V | none            interest override for one feature id
-          interest.default=V              interest of features without another value
-          interest.keep-existing=yes|no   keep the features' own interest where no override
-                                          applies (default yes for overrides made here)
-          interest.landmark-threshold=V
-          interest=none                   (without --configuration) drop every override
-        configuration keys (need --configuration NAME)
-          name=NEW                        rename it
-          style=NAME                      a graphic style (photorealistic, abstract,
-                                          cartographic, blueprint, hidden)
-          types=T,T... | all              feature types in scope (types= empties the scope)
-          subtypes=A,B... | subtypes=     sub-types in scope (empty: any)
-          lod=MIN:MAX                     LoD range in scope
-          interest=MIN:MAX                static-interest range in scope, e.g. 0.8:1
-          interpolation=fragment|object|group
-          group-focus=X,Y,Z | none        shared focus point of group interpolation
-          combination=weighted-mean|minimum|maximum
-          fade-in=BEGIN:END               fade-in interval over interest (BEGIN alone or
-          fade-out=BEGIN:END              BEGIN:BEGIN: a hard step; fade-out=1:1: none)
-          metric.KIND=NEAR:FAR[:WEIGHT[:SCALE]]
-                                          adds or replaces the metric of KIND (view-distance,
-                                          view-angle, region, focus, feature-interest);
-                                          feature-interest ignores NEAR:FAR (write 0:0 or on);
-                                          SCALE: absolute (scene units, the default), scene
-                                          (times the model's size S) or view (times the
-                                          camera's distance to the model's centre)
-          metric.KIND=none                removes it
-        structure
-          add-configuration NAME          appends a configuration like create's default
-                                          (all types, photorealistic, object, feature-interest)
-          remove-configuration NAME
-          add-region SHAPE "X,Y;X,Y;..." [RADIUS]
-                                          SHAPE circles, polyline or polygon; RADIUS >= 0
-                                          (default 0); named region-N
-          add-regions FILE [RADIUS]       every point (circles), line (polyline) and polygon of
-                                          a GeoJSON file (or any vector format GDAL reads),
-                                          named by its "name" property; with --model MODEL
-                                          of a geo-referenced model (CityJSON, OSM) the
-                                          coordinates are longitude/latitude (or the file's
-                                          own reference system), else scene x/y
-          clear-regions
-  explain SCENARIO [options]
-      loads a model (default: the demo city, demo.loacity), classifies it, binds the scenario
-      to it in an osgLoA::LoANode and evaluates it at the camera's eye. Prints per feature in
-      the view frustum, nearest first (distance from the eye to the centre of its box): id,
-      type, static interest and, per matching configuration, its interest, raw and
-      normalized blend weight and interpolation mode; then the evaluator's statistics.
-      Fragment-mode values are those at the centre of the feature's box (the shader
-      evaluates them per fragment); they are marked with '*'.
-    options:
-      --model MODEL         any model osgDB reads (default demo.loacity)
-      -O TEXT, --options TEXT
-                            osgDB option string for the model's reader, e.g. for the demo city
-                            "blocksX=4 blocksY=3" (keys: docs/demo-city.md)
-      --features N          list the N nearest features (default 25; 0: all)
-      --all                 evaluate every feature, not only those in the view frustum
-      --json                one JSON object instead of text
-      --image FILE.png      also render the interest debug view (paper 004 Figure 5: black =
-                            interest 1, high detail; white = interest 0, abstraction)
-      --size WxH            viewport of the camera and size of that image (default 1024x768)
 )";
-const char* kHelpTail = R"(
-general options: --help, --version
-
-exit status: 0 done; 1 the work failed (a scenario or model could not be read or written, a
+const char* kFooter =
+    R"(exit status: 0 done; 1 the work failed (a scenario or model could not be read or written, a
 scenario does not validate, FILE exists without --force); 2 bad arguments (unknown command,
 option, key or a bad value); 3 no usable EGL/OpenGL context (only with --image).
+)";
+const char* kListDescription =
+    R"(Every scenario name the libraries and the built-ins offer, with its origin (file or
+"built-in") and the first sentence of its description.
+)";
+const char* kShowDescription =
+    R"(Description, interest overrides, regions, focus object, and per configuration its scope,
+style, interpolation, combination, metrics, fade-in and fade-out, then the validation result.
+)";
+const char* kValidateDescription =
+    R"(Checks each scenario: one line per error or warning, "FILE: error: ..." or
+"FILE: warning: ..."; exit status 1 when any scenario has an error.
+)";
+const char* kCreateDescription =
+    R"(Writes a new scenario file (atomically). --from copies a library, built-in or file scenario.
+Without --from the new scenario has one configuration, 'photorealistic': every feature type,
+style photorealistic, object interpolation, one feature-interest metric (valid as it is; edit
+it with `set`). The scenario's name is FILE's base name. Refuses to overwrite an existing FILE
+without --force.
+)";
+const char* kSetDescription =
+    R"(Edits a scenario file in place (atomically), applying the edits in order, then validates:
+when the result has errors it prints them, leaves FILE unchanged and exits with status 1,
+unless --force. Edits:
+  scenario keys
+    description=TEXT
+    focus=ID | tallest | none       the focus object of focus metrics: a feature id, or
+                                    the tallest landmark of the model it is bound to
+    interest.TYPE=V | none          interest override for a feature type (building,
+                                    street, water, green, terrain, generic), V in [0,1]
+    interest.ID=V | none            interest override for one feature id
+    interest.default=V              interest of features without another value
+    interest.keep-existing=yes|no   keep the features' own interest where no override
+                                    applies (default yes for overrides made here)
+    interest.landmark-threshold=V
+    interest=none                   (without --configuration) drop every override
+  configuration keys (need --configuration NAME)
+    name=NEW                        rename it
+    style=NAME                      a graphic style (photorealistic, abstract,
+                                    cartographic, blueprint, hidden)
+    types=T,T... | all              feature types in scope (types= empties the scope)
+    subtypes=A,B... | subtypes=     sub-types in scope (empty: any)
+    lod=MIN:MAX                     LoD range in scope
+    interest=MIN:MAX                static-interest range in scope, e.g. 0.8:1
+    interpolation=fragment|object|group
+    group-focus=X,Y,Z | none        shared focus point of group interpolation
+    combination=weighted-mean|minimum|maximum
+    fade-in=BEGIN:END               fade-in interval over interest (BEGIN alone or
+    fade-out=BEGIN:END              BEGIN:BEGIN: a hard step; fade-out=1:1: none)
+    metric.KIND=NEAR:FAR[:WEIGHT[:SCALE]]
+                                    adds or replaces the metric of KIND (view-distance,
+                                    view-angle, region, focus, feature-interest);
+                                    feature-interest ignores NEAR:FAR (write 0:0 or on);
+                                    SCALE: absolute (scene units, the default), scene
+                                    (times the model's size S) or view (times the
+                                    camera's distance to the model's centre)
+    metric.KIND=none                removes it
+  structure
+    add-configuration NAME          appends a configuration like create's default
+                                    (all types, photorealistic, object, feature-interest)
+    remove-configuration NAME
+    add-region SHAPE "X,Y;X,Y;..." [RADIUS]
+                                    SHAPE circles, polyline or polygon; RADIUS >= 0
+                                    (default 0); named region-N
+    add-regions FILE [RADIUS]       every point (circles), line (polyline) and polygon of
+                                    a GeoJSON file (or any vector format GDAL reads),
+                                    named by its "name" property; with --model MODEL
+                                    of a geo-referenced model (CityJSON, OSM) the
+                                    coordinates are longitude/latitude (or the file's
+                                    own reference system), else scene x/y
+    clear-regions
+)";
+const char* kExplainDescription =
+    R"(Loads MODEL (default: the demo city, demo.loacity; several are one scene), classifies it,
+binds the scenario to it in an osgLoA::LoANode and evaluates it at the camera's eye. Prints per
+feature in the view frustum, nearest first (distance from the eye to the centre of its box):
+id, type, static interest and, per matching configuration, its interest, raw and normalized
+blend weight and interpolation mode; then the evaluator's statistics. Fragment-mode values are
+those at the centre of the feature's box (the shader evaluates them per fragment); they are
+marked with '*'.
 )";
 
 // ---------------------------------------------------------------- formatting
@@ -354,17 +344,8 @@ std::string jsonStrings(const std::vector<std::string>& v)
 
 // ---------------------------------------------------------------- list
 
-int cmdList(loa::Args& args)
+int cmdList(bool json)
 {
-    bool json = false;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (a == "--json")
-            json = true;
-        else
-            throw loa::UsageError("list: unexpected argument '" + a + "' (see --help)");
-    }
     const std::vector<std::string> names = osgLoA::ScenarioLibrary::availableNames();
     std::size_t width = 4;
     for (const std::string& n : names)
@@ -575,22 +556,8 @@ void showJson(const Loaded& l)
     std::cout << o.str();
 }
 
-int cmdShow(loa::Args& args)
+int cmdShow(const std::string& name, bool json)
 {
-    bool json = false;
-    std::string name;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (a == "--json")
-            json = true;
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("show: unknown option '" + a + "' (see --help)");
-        else if (name.empty())
-            name = a;
-        else
-            throw loa::UsageError("show: more than one SCENARIO given ('" + name + "' and '" + a + "')");
-    }
     if (name.empty()) throw loa::UsageError("show: no SCENARIO given (see --help)");
     const Loaded l = loadScenario(name);
     if (json)
@@ -602,16 +569,8 @@ int cmdShow(loa::Args& args)
 
 // ---------------------------------------------------------------- validate
 
-int cmdValidate(loa::Args& args)
+int cmdValidate(const std::vector<std::string>& names)
 {
-    std::vector<std::string> names;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("validate: unknown option '" + a + "' (see --help)");
-        names.push_back(a);
-    }
     if (names.empty()) throw loa::UsageError("validate: no SCENARIO given (see --help)");
     bool failed = false;
     for (const std::string& n : names)
@@ -666,26 +625,16 @@ int validateAndWrite(const UsageScenario& s, const std::string& file, bool force
     return loa::kOk;
 }
 
-int cmdCreate(loa::Args& args)
+struct CreateOptions
 {
     std::string file, from, description;
     bool haveDescription = false, force = false;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (a == "--from")
-            from = args.value(a);
-        else if (a == "--description")
-            description = args.value(a), haveDescription = true;
-        else if (a == "--force")
-            force = true;
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("create: unknown option '" + a + "' (see --help)");
-        else if (file.empty())
-            file = a;
-        else
-            throw loa::UsageError("create: more than one FILE given ('" + file + "' and '" + a + "')");
-    }
+};
+
+int cmdCreate(const CreateOptions& c)
+{
+    const std::string &file = c.file, &from = c.from, &description = c.description;
+    const bool haveDescription = c.haveDescription, force = c.force;
     if (file.empty()) throw loa::UsageError("create: no FILE given (see --help)");
     checkScenarioFileName(file);
     if (osgDB::fileExists(file) && !force)
@@ -967,31 +916,20 @@ struct Editor
     }
 };
 
-int cmdSet(loa::Args& args)
+struct SetOptions
 {
-    // First pass: the file and the options, so that edits can come in any order with them.
-    std::vector<std::string> words;
-    std::string file, configurationName, model;
+    std::vector<std::string> words; ///< FILE then the edits
+    std::string configurationName, model;
     bool force = false, haveConfiguration = false;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (a == "--model")
-            model = args.value(a);
-        else if (a == "--configuration")
-        {
-            if (haveConfiguration) throw loa::UsageError("set: --configuration given twice");
-            configurationName = args.value(a), haveConfiguration = true;
-        }
-        else if (a == "--force")
-            force = true;
-        else if (a.compare(0, 2, "--") == 0 || (file.empty() && !a.empty() && a[0] == '-'))
-            throw loa::UsageError("set: unknown option '" + a + "' (see --help)");
-        else if (file.empty())
-            file = a;
-        else
-            words.push_back(a); // may start with '-': add-region "-480,-330;..." -5
-    }
+};
+
+int cmdSet(const SetOptions& o)
+{
+    const std::string file = o.words.empty() ? std::string() : o.words.front();
+    const std::vector<std::string> words(o.words.empty() ? o.words.begin() : o.words.begin() + 1,
+                                         o.words.end());
+    const std::string &configurationName = o.configurationName, &model = o.model;
+    const bool force = o.force, haveConfiguration = o.haveConfiguration;
     if (file.empty()) throw loa::UsageError("set: no FILE given (see --help)");
     checkScenarioFileName(file);
     if (words.empty())
@@ -1068,56 +1006,30 @@ int cmdSet(loa::Args& args)
 
 struct ExplainOptions
 {
-    std::string scenario, model = "demo.loacity", readerOptions, image;
-    bool json = false, all = false, haveSize = false;
+    std::vector<std::string> scenarioAndModels; ///< SCENARIO then MODEL...
+    std::string scenario, model, readerOptions, image;
+    std::vector<std::string> models;
+    bool json = false, all = false;
     unsigned features = 25;
-    int width = 1024, height = 768;
+    int width = loa::kDefaultWidth, height = loa::kDefaultHeight;
     loa::CameraChoice camera;
     loa::RulesChoice rules;
 };
 
-ExplainOptions parseExplain(loa::Args& args)
+void checkExplain(ExplainOptions& o)
 {
-    ExplainOptions o;
-    while (!args.empty())
-    {
-        const std::string a = args.next();
-        if (loa::parseCameraOption(a, args, o.camera))
-            continue;
-        else if (loa::parseRulesOption(a, args, o.rules))
-            continue;
-        else if (a == "--model")
-            o.model = args.value(a);
-        else if (a == "-O" || a == "--options")
-            o.readerOptions += " " + args.value(a);
-        else if (a == "--features")
-            o.features = loa::parseCount(a, args.value(a), 100000000u);
-        else if (a == "--all")
-            o.all = true;
-        else if (a == "--json")
-            o.json = true;
-        else if (a == "--image")
-            o.image = args.value(a);
-        else if (a == "--size")
-            loa::parseSize(args.value(a), o.width, o.height), o.haveSize = true;
-        else if (!a.empty() && a[0] == '-')
-            throw loa::UsageError("explain: unknown option '" + a + "' (see --help)");
-        else if (o.scenario.empty())
-            o.scenario = a;
-        else
-            throw loa::UsageError("explain: more than one SCENARIO given ('" + o.scenario + "' and '" + a +
-                                  "')");
-    }
     loa::checkCameraOptions(o.camera);
-    if (o.scenario.empty()) throw loa::UsageError("explain: no SCENARIO given (see --help)");
+    if (o.scenarioAndModels.empty()) throw loa::UsageError("explain: no SCENARIO given (see --help)");
+    o.scenario = o.scenarioAndModels.front();
+    o.models.assign(o.scenarioAndModels.begin() + 1, o.scenarioAndModels.end());
+    if (o.models.empty()) o.models.push_back("demo.loacity");
+    o.model = loa::modelLabel(o.models);
     if (!o.image.empty() && osgDB::getLowerCaseFileExtension(o.image) != "png")
         throw loa::UsageError("--image '" + o.image + "' must name a .png file");
-    return o;
 }
 
-int cmdExplain(loa::Args& args)
+int cmdExplain(const ExplainOptions& o)
 {
-    const ExplainOptions o = parseExplain(args);
     const Loaded l = loadScenario(o.scenario);
     const UsageScenario::Validation v = l.scenario->validate();
     if (!v.ok())
@@ -1128,17 +1040,7 @@ int cmdExplain(loa::Args& args)
         throw std::runtime_error(msg);
     }
 
-    if (!o.readerOptions.empty())
-    {
-        osg::ref_ptr<osgDB::Options> options =
-            osgDB::Registry::instance()->getOptions()
-                ? static_cast<osgDB::Options*>(
-                      osgDB::Registry::instance()->getOptions()->clone(osg::CopyOp()))
-                : new osgDB::Options;
-        options->setOptionString(o.readerOptions);
-        osgDB::Registry::instance()->setOptions(options.get());
-    }
-    osg::ref_ptr<osg::Node> scene = loa::loadModel(o.model);
+    osg::ref_ptr<osg::Node> scene = loa::loadModels(o.models, o.readerOptions);
     const osgLoA::FeatureClassifier::Report report =
         osgLoA::FeatureClassifier(o.rules.assemble().get()).classify(*scene);
 
@@ -1327,33 +1229,99 @@ int cmdExplain(loa::Args& args)
 
 int run(int argc, char** argv)
 {
-    const std::string help =
-        std::string(kHelp) + "  camera options of explain (as in loa-render and loa-classify):\n" +
-        loa::kCameraHelp + "  classification options of explain (as in loa-render and loa-classify):\n" +
-        loa::kRulesHelp + kHelpTail;
-    loa::Args args(argc, argv);
-    if (args.empty())
-        throw loa::UsageError("no COMMAND given (list, show, validate, create, set, explain; see --help)");
-    const std::string command = args.next();
-    loa::exitOnHelpOrVersion(command, "loa-scenario", help);
-    // --help and --version anywhere after the command as well.
-    {
-        loa::Args scan(argc, argv);
-        while (!scan.empty())
-        {
-            const std::string w = scan.next();
-            if (w == "--help" || w == "-h" || w == "--version")
-                loa::exitOnHelpOrVersion(w, "loa-scenario", help);
-        }
-    }
-    if (command == "list") return cmdList(args);
-    if (command == "show") return cmdShow(args);
-    if (command == "validate") return cmdValidate(args);
-    if (command == "create") return cmdCreate(args);
-    if (command == "set") return cmdSet(args);
-    if (command == "explain") return cmdExplain(args);
-    throw loa::UsageError("unknown command '" + command +
-                          "' (list, show, validate, create, set, explain; see --help)");
+    loa::CommandLine cl("loa-scenario", "loa-scenario COMMAND [arguments]", kDescription);
+    CLI::App& app = cl.app();
+    app.require_subcommand(1, 1);
+
+    bool listJson = false;
+    CLI::App* list =
+        cl.command("list", "list [--json]", "the scenario names of the libraries", kListDescription);
+    list->add_flag("--json", listJson, "one JSON array instead of text");
+
+    std::string showName;
+    bool showJsonFlag = false;
+    CLI::App* show = cl.command("show", "show SCENARIO [--json]", "a scenario in full", kShowDescription);
+    show->add_option("SCENARIO", showName, "a library name or a scenario file");
+    show->add_flag("--json", showJsonFlag, "one JSON object instead of text");
+
+    std::vector<std::string> validateNames;
+    CLI::App* validate = cl.command("validate", "validate SCENARIO...",
+                                    "check scenarios, one line per problem", kValidateDescription);
+    validate->add_option("SCENARIO", validateNames, "library names or scenario files");
+
+    CreateOptions create;
+    CLI::App* createCommand =
+        cl.command("create", "create FILE [--from SCENARIO] [--description TEXT] [--force]",
+                   "write a new scenario file", kCreateDescription);
+    createCommand->add_option("FILE", create.file, "the scenario file to write (.osgt, .osgb or .osgx)");
+    createCommand->add_option("--from", create.from, "copy this scenario (a library name or a file)")
+        ->type_name("SCENARIO");
+    createCommand
+        ->add_option_function<std::string>(
+            "--description",
+            [&create](const std::string& d) { create.description = d, create.haveDescription = true; },
+            "the scenario's description")
+        ->type_name("TEXT");
+    createCommand->add_flag("--force", create.force, "overwrite an existing FILE");
+
+    SetOptions set;
+    CLI::App* setCommand =
+        cl.command("set", "set FILE EDIT... [--configuration NAME] [--model MODEL] [--force]",
+                   "edit a scenario file", kSetDescription);
+    setCommand->add_option("FILE_EDIT", set.words, "the scenario file, then the edits in order");
+    setCommand
+        ->add_option_function<std::string>(
+            "--configuration",
+            [&set](const std::string& n) { set.configurationName = n, set.haveConfiguration = true; },
+            "the configuration the configuration keys edit")
+        ->type_name("NAME");
+    setCommand
+        ->add_option("--model", set.model,
+                     "the model add-regions takes its geo-reference from (a CityJSON or OSM model): the "
+                     "file's longitude/latitude are transformed into its frame")
+        ->type_name("MODEL");
+    setCommand->add_flag("--force", set.force, "write the scenario even when it does not validate");
+
+    ExplainOptions explain;
+    CLI::App* explainCommand =
+        cl.command("explain", "explain SCENARIO [MODEL...] [options]",
+                   "each feature's interest and blend weights at a camera", kExplainDescription);
+    explainCommand
+        ->add_option("SCENARIO_MODEL", explain.scenarioAndModels,
+                     "the scenario (a library name or a file), then the models (default: the demo "
+                     "city, demo.loacity; several are one scene)")
+        ->group(loa::kGroupModel);
+    loa::addReaderOptions(*explainCommand, explain.readerOptions);
+    loa::addRules(*explainCommand, explain.rules);
+    loa::addCamera(*explainCommand, explain.camera);
+    loa::addSize(*explainCommand, explain.width, explain.height, "the camera's viewport and the --image");
+    explainCommand
+        ->add_option(
+            "--image", explain.image,
+            "also render the interest debug view (paper 004 Figure 5: black = interest 1, high detail; "
+            "white = interest 0, abstraction)")
+        ->type_name("FILE.png")
+        ->group(loa::kGroupOutput);
+    explainCommand
+        ->add_option_function<std::string>(
+            "--features",
+            [&explain](const std::string& t)
+            { explain.features = loa::parseCount("--features", t, 100000000u); },
+            "list the N nearest features (default 25; 0: all)")
+        ->type_name("N");
+    explainCommand->add_flag("--all", explain.all,
+                             "evaluate every feature, not only those in the view frustum");
+    explainCommand->add_flag("--json", explain.json, "one JSON object instead of text");
+
+    cl.footer(kFooter);
+    cl.parse(argc, argv);
+    if (list->parsed()) return cmdList(listJson);
+    if (show->parsed()) return cmdShow(showName, showJsonFlag);
+    if (validate->parsed()) return cmdValidate(validateNames);
+    if (createCommand->parsed()) return cmdCreate(create);
+    if (setCommand->parsed()) return cmdSet(set);
+    checkExplain(explain);
+    return cmdExplain(explain);
 }
 } // namespace
 

@@ -1,5 +1,6 @@
 // loa-sheet: tiles images of one size into a contact sheet (docs/images/scenarios-*.png).
 #include "../common/AppSupport.h"
+#include "../common/CommandLine.h"
 
 #include <osgLoA/util/ImageFile>
 
@@ -11,18 +12,12 @@
 
 namespace
 {
-const char* kHelp = R"(usage: loa-sheet OUTPUT.png IMAGE... [--columns N] [--gap PIXELS]
-
-Tiles the IMAGEs (PNG or any format OpenImageIO reads; all of one size) row by row, left to
-right, into one contact sheet OUTPUT.png, with white gaps between them; 8-bit RGB. The write
+const char* kDescription =
+    R"(Tiles the IMAGEs (PNG or any format OpenImageIO reads; all of one size) row by row, left to
+right, into one contact sheet --out FILE.png, with white gaps between them; 8-bit RGB. The write
 is atomic. scripts/contact-sheets uses it for one sheet of every library scenario per scene.
-
-options:
-  --columns N     images per row (default 3)
-  --gap PIXELS    white space between images (default 8)
-  --help, --version
-
-exit status: 0 written, 1 an image could not be read or the sheet not written, 2 bad
+)";
+const char* kFooter = R"(exit status: 0 written, 1 an image could not be read or the sheet not written, 2 bad
 arguments (no image, images of different sizes).
 )";
 
@@ -68,27 +63,19 @@ int main(int argc, char** argv)
         "loa-sheet",
         [&]
         {
-            loa::Args args(argc, argv);
-            while (!args.empty())
-            {
-                const std::string a = args.next();
-                loa::exitOnHelpOrVersion(a, "loa-sheet", kHelp);
-                if (a == "--columns")
-                    columns = loa::parseCount(a, args.value(a), 64);
-                else if (a == "--gap")
-                    gap = loa::parseCount(a, args.value(a), 1024);
-                else if (!a.empty() && a[0] == '-')
-                    throw loa::UsageError("unknown option '" + a + "' (see --help)");
-                else if (output.empty())
-                    output = a;
-                else
-                    inputs.push_back(a);
-            }
-            if (output.empty()) throw loa::UsageError("no OUTPUT.png given (see --help)");
+            loa::CommandLine cl("loa-sheet", "loa-sheet IMAGE... --out FILE.png [--columns N] [--gap PIXELS]",
+                                kDescription);
+            CLI::App& app = cl.app();
+            app.add_option("IMAGE", inputs, "the images, in reading order")->group(loa::kGroupModel);
+            loa::addOutFile(app, output, "the contact sheet to write (.png; required)");
+            loa::addCount(app, "--columns", columns, 1, 64, "images per row (default 3)");
+            loa::addCount(app, "--gap", gap, 0, 1024, "white space between images in pixels (default 8)");
+            cl.footer(kFooter);
+            cl.parse(argc, argv);
+            if (output.empty()) throw loa::UsageError("no --out FILE.png given (see --help)");
             if (osgDB::getLowerCaseFileExtension(output) != "png")
-                throw loa::UsageError("OUTPUT '" + output + "' must name a .png file");
+                throw loa::UsageError("--out '" + output + "' must name a .png file");
             if (inputs.empty()) throw loa::UsageError("no IMAGE given (see --help)");
-            if (columns == 0) throw loa::UsageError("--columns must be at least 1");
         },
         [&]
         {
