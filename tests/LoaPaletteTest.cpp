@@ -191,6 +191,12 @@ TEST_F(LoaPalette, SyntheticModelLevelsAndChart)
     // nearest of them in Lab: near-red -> red, near-blue -> blue.
     std::string out2;
     ASSERT_EQ(runTool("'" + model + "' --levels 2 --out-dir '" + o + "2'", out2), 0) << out2;
+    // A second run into the same folder replaces it as a whole: level 2 only, no level 5 file of
+    // an earlier run beside the new palettes.json.
+    ASSERT_EQ(runTool("'" + model + "' --levels 5 --out-dir '" + o + "2'", out2), 0) << out2;
+    EXPECT_TRUE(osgDB::fileExists(o + "2/half-5.png"));
+    ASSERT_EQ(runTool("'" + model + "' --levels 2 --out-dir '" + o + "2'", out2), 0) << out2;
+    EXPECT_FALSE(osgDB::fileExists(o + "2/half-5.png")) << "old and new outputs mixed";
     const osg::ref_ptr<osg::Image> h2 = readPng(o + "2/half-2.png");
     ASSERT_TRUE(h2);
     for (int y = 0; y < 4; ++y)
@@ -348,6 +354,8 @@ TEST_F(LoaPalette, UsageAndFailureExitCodes)
         {"'" + dir + "/bare.osgt'" + o, 1, "no textured geometry"},
         {m + " --out-dir '" + dir + "/file/sub'", 1, "cannot create the output directory"},
         {m + " --out-dir '" + dir + "/file'", 1, "exists and is not a directory"},
+        // A folder of other files is never replaced (the output folder is written as a whole).
+        {m + " --out-dir '" + dir + "'", 1, "holds files this tool did not write"},
     };
     for (const Case& k : cases)
     {

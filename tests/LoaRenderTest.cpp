@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -123,4 +125,49 @@ TEST(LoaRenderTest, NoUsableEglIsOneSentenceAndStatus3)
     EXPECT_EQ(status, 3) << out;
     EXPECT_NE(out.find("loa-render: error: No usable EGL display"), std::string::npos) << out;
     EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+}
+
+// Outputs respect what their paths name (issue 22 item 4), checked through the tool: a full
+// device is exit 1 with one line and stays a device, a FIFO is refused at once (no hang), a
+// symbolic link is written through and stays a link.
+TEST(LoaRenderTest, OutputsRespectTheFileSystem)
+{
+    const std::string dir = loatest::freshDirectory("LoaRenderTestFiles");
+    const std::string base =
+        "cd '" + dir + "' && timeout 120 " + exe() + " -O 'blocksX=2 blocksY=2 landmarks=1' --size 64x48 ";
+    std::string out;
+    struct stat st;
+    if (::stat("/dev/full", &st) == 0)
+    {
+        EXPECT_EQ(loatest::run(base + "--out a.png --stats /dev/full", out), 1) << out;
+        EXPECT_NE(out.find("loa-render: error: cannot write '/dev/full': No space left on device"),
+                  std::string::npos)
+            << out;
+        ASSERT_EQ(::stat("/dev/full", &st), 0);
+        EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/full was replaced";
+    }
+    ASSERT_EQ(::mkfifo((dir + "/fifo.json").c_str(), 0644), 0);
+    EXPECT_EQ(loatest::run(base + "--out b.png --stats fifo.json", out), 1) << out;
+    EXPECT_NE(out.find("'fifo.json' is a FIFO"), std::string::npos) << out;
+    ASSERT_EQ(::lstat((dir + "/fifo.json").c_str(), &st), 0);
+    EXPECT_TRUE(S_ISFIFO(st.st_mode));
+    // Links: the image and the statistics land in the targets.
+    ASSERT_EQ(::mkdir((dir + "/real").c_str(), 0755), 0);
+    ASSERT_EQ(::symlink("real/image.png", (dir + "/link.png").c_str()), 0);
+    ASSERT_EQ(::symlink("real/stats.json", (dir + "/link.json").c_str()), 0);
+    EXPECT_EQ(loatest::run(base + "--out link.png --stats link.json", out), 0) << out;
+    for (const char* link : {"link.png", "link.json"})
+    {
+        ASSERT_EQ(::lstat((dir + "/" + link).c_str(), &st), 0);
+        EXPECT_TRUE(S_ISLNK(st.st_mode)) << link << " was replaced by a file";
+    }
+    ASSERT_EQ(::stat((dir + "/real/image.png").c_str(), &st), 0);
+    EXPECT_GT(st.st_size, 100);
+    ASSERT_EQ(::stat((dir + "/real/stats.json").c_str(), &st), 0);
+    EXPECT_GT(st.st_size, 100);
+    // The image into a device: written into it, the device stays.
+    ASSERT_EQ(::symlink("/dev/null", (dir + "/null.png").c_str()), 0);
+    EXPECT_EQ(loatest::run(base + "--out null.png", out), 0) << out;
+    ASSERT_EQ(::stat("/dev/null", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode));
 }

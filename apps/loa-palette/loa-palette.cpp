@@ -10,6 +10,7 @@
 #include <osgLoA/palette/TextureHistogram>
 #include <osgLoA/palette/WeightedColor>
 #include <osgLoA/render/HeadlessContext>
+#include <osgLoA/util/AtomicDirectory>
 #include <osgLoA/util/AtomicFile>
 #include <osgLoA/util/ImageFile>
 #include <osgLoA/util/JsonString>
@@ -49,7 +50,8 @@ one scene) and, for every distinct image of a 2D texture on unit 0, computes the
      triangle covers) are in no cluster: they get the nearest level-k colour in CIELab (CIE76).
      Alpha is kept as it is.
 
-Writes into the --out-dir DIR (created if missing; every file written atomically):
+Writes into the --out-dir DIR, as a whole (a new run replaces an earlier one's folder in one step;
+an interrupted run leaves it as it was; an existing folder must be empty or such an output):
   NAME-K.png            the segmented texture at level K, the texture's size (RGB, or RGBA
                         when the texture has alpha)
   NAME-histogram.png    the colour table as vertical bars sorted by weight (height
@@ -120,7 +122,10 @@ Options parse(int argc, char** argv)
     CLI::App& app = cl.app();
     loa::addModels(app, o.models, "the models whose textures to segment (one scene)");
     loa::addReaderOptions(app, o.readerOptions);
-    loa::addOutDir(app, o.out, "the output directory (required; created if missing)");
+    loa::addOutDir(
+        app, o.out,
+        "the output directory (required; created if missing, replaced as a whole; an existing one must "
+        "be empty or an earlier loa-palette output)");
     app.add_option_function<std::string>(
            "--levels", [&o](const std::string& t) { o.levels = parseLevels(t); },
            "comma-separated levels, each 1..65536 (default 4,8,16,32); a level above a texture's number of "
@@ -381,14 +386,11 @@ std::string number(double v, const char* format = "%.9g")
 
 int run(const Options& o)
 {
-    // The output directory first: a run that cannot write should fail before the work.
-    if (osgDB::fileExists(o.out) && osgDB::fileType(o.out) != osgDB::DIRECTORY)
-        throw std::runtime_error("--out-dir '" + o.out + "' exists and is not a directory");
-    if (!osgDB::makeDirectory(o.out) || osgDB::fileType(o.out) != osgDB::DIRECTORY)
-        throw std::runtime_error("cannot create the output directory '" + o.out + "'");
-    if (::access(o.out.c_str(), W_OK | X_OK) != 0)
-        throw std::runtime_error("the output directory '" + o.out + "' is not writable");
-    const std::string& staging = o.out;
+    // The output directory first: a run that cannot write should fail before the work. It is
+    // written as a whole: the files go into a staging folder that replaces --out-dir at the end,
+    // so an interrupted run leaves the old outputs, never new images beside an old palettes.json.
+    osgLoA::AtomicDirectory outDir(o.out, "palettes.json");
+    const std::string& staging = outDir.staging();
 
     // An image file that cannot be read leaves an empty image carrying its name (reported below).
     osg::ref_ptr<osg::Node> scene = loa::loadModels(o.models, o.readerOptions, true);
@@ -655,6 +657,7 @@ int run(const Options& o)
     json << (done ? "\n  ],\n" : "],\n") << "  \"skipped\": [" << skippedJson.str()
          << (skipped ? "\n  ]\n}\n" : "]\n}\n");
     osgLoA::AtomicFile::writeText(staging + "/palettes.json", json.str());
+    outDir.commit();
 
     std::string levelList;
     for (unsigned k : o.levels)
