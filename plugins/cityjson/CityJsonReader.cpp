@@ -21,6 +21,8 @@
 #include <osgDB/ReadFile>
 #include <osgUtil/Tessellator>
 
+#include <osgLoA/util/PolygonCrossings>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -447,6 +449,10 @@ private:
     int materialIndex(const json* value, const std::string& where) const;
     Bin& binFor(ObjectData& od, Bin::Kind kind, const std::string& name, int material, int texture);
     bool computeKept(std::size_t i, std::set<std::size_t>& visiting);
+    /** Throws InputLimitError for a polygon whose edges cross more than max-crossings times. */
+    void checkCrossings(const Polygon& poly, const std::string& where) const;
+    /** Throws InputLimitError for a chain of children longer than max-hierarchy. */
+    void checkHierarchy() const;
     osg::Texture2D* texture(int index);
     osg::StateSet* stateSet(int material, int texture);
     osg::ref_ptr<osg::Geometry> makeGeometry(const Bin& bin, const osg::Vec3d& origin);
@@ -521,6 +527,10 @@ void Builder::readVertices()
         vec3("scale", scale);
         vec3("translate", translate);
     }
+    if (vertices.size() > _settings.limits.maxVertices)
+        throw osgLoA::InputLimitError(
+            osgLoA::InputLimits::exceeded(_source, std::to_string(vertices.size()) + " vertices",
+                                          "max-vertices", _settings.limits.maxVertices));
     _vertices.reserve(vertices.size());
     for (std::size_t i = 0; i < vertices.size(); ++i)
     {
@@ -753,6 +763,10 @@ void Builder::addSurface(ObjectData& od, const json& surface, const json* semInd
     {
         const std::string ringWhere = where + " ring " + std::to_string(r);
         const json& ring = requireArray(surface[r], ringWhere);
+        if (ring.size() > _settings.limits.maxRingVertices)
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                _source, ringWhere + " with " + std::to_string(ring.size()) + " vertices",
+                "max-ring-vertices", _settings.limits.maxRingVertices));
         std::vector<osg::Vec3d> pts;
         std::vector<osg::Vec2f> uvs;
         pts.reserve(ring.size());
@@ -778,6 +792,7 @@ void Builder::addSurface(ObjectData& od, const json& surface, const json* semInd
         textureIndex = -1; // missing image: untextured with its material (warned once per file)
         poly.uvs.clear();
     }
+    checkCrossings(poly, where);
     Bin& bin = binFor(od, Bin::TRIANGLES, name.empty() ? "Surface" : name, material, textureIndex);
     if (triangulate(poly, bin))
         od.produced = true;
@@ -1007,6 +1022,88 @@ void Builder::processObject(ObjectData& od)
     }
 }
 
+void Builder::checkCrossings(const Polygon& poly, const std::string& where) const
+{
+    std::size_t n = 0;
+    for (const auto& ring : poly.rings)
+        n += ring.size();
+    if (n < 16 || poly.rings.empty() || poly.rings.front().size() < 3) return; // too small to be costly
+    // Projected along the axis the outer ring's normal is closest to.
+    const osg::Vec3d normal = newellNormal(poly.rings.front());
+    const double ax = std::abs(normal.x()), ay = std::abs(normal.y()), az = std::abs(normal.z());
+    std::vector<std::vector<osg::Vec2d>> rings;
+    for (const auto& ring : poly.rings)
+    {
+        std::vector<osg::Vec2d> r;
+        r.reserve(ring.size());
+        for (const osg::Vec3d& p : ring)
+            r.push_back(az >= ax && az >= ay ? osg::Vec2d(p.x(), p.y())
+                        : ay >= ax           ? osg::Vec2d(p.x(), p.z())
+                                             : osg::Vec2d(p.y(), p.z()));
+        rings.push_back(std::move(r));
+    }
+    const unsigned limit = _settings.limits.maxCrossings;
+    const osgLoA::PolygonCrossings c = osgLoA::PolygonCrossings::count(rings, limit + 1, 64 * n + 100000);
+    if (c.tooMany || c.tooComplex)
+        throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+            _source,
+            where + ": a polygon of " + std::to_string(n) + " vertices whose edges cross " +
+                (c.tooMany ? "more than " + std::to_string(limit) + " times" : "too often to count"),
+            "max-crossings", limit));
+}
+
+void Builder::checkHierarchy() const
+{
+    // The longest chain of "children" edges (cycles cut where they close), iteratively: the later
+    // recursive passes (computeKept, place) then go at most max-hierarchy deep.
+    const unsigned limit = _settings.limits.maxHierarchy;
+    std::vector<unsigned> height(_objects.size(), 0);
+    std::vector<char> state(_objects.size(), 0);            // 0 new, 1 on the stack, 2 done
+    std::vector<std::pair<std::size_t, std::size_t>> stack; // (object, next child)
+    for (std::size_t root = 0; root < _objects.size(); ++root)
+    {
+        if (state[root]) continue;
+        stack.emplace_back(root, 0);
+        state[root] = 1;
+        while (!stack.empty())
+        {
+            auto& [i, next] = stack.back();
+            const std::vector<std::size_t>& children = _objects[i].children;
+            if (next < children.size())
+            {
+                const std::size_t c = children[next++];
+                if (state[c] == 0)
+                {
+                    state[c] = 1;
+                    stack.emplace_back(c, 0);
+                    if (stack.size() > limit + 1u)
+                        throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                            _source,
+                            "a chain of more than " + std::to_string(limit) + " nested city objects (from " +
+                                inQuotes(_objects[stack.front().first].id) + ")",
+                            "max-hierarchy", limit));
+                }
+                else if (state[c] == 2)
+                {
+                    height[i] = std::max(height[i], height[c] + 1);
+                    if (height[i] + stack.size() > limit + 1u)
+                        throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                            _source,
+                            "a chain of more than " + std::to_string(limit) + " nested city objects (at " +
+                                inQuotes(_objects[i].id) + ")",
+                            "max-hierarchy", limit));
+                }
+                continue;
+            }
+            state[i] = 2;
+            const std::size_t done = i;
+            stack.pop_back();
+            if (!stack.empty())
+                height[stack.back().first] = std::max(height[stack.back().first], height[done] + 1);
+        }
+    }
+}
+
 bool Builder::computeKept(std::size_t i, std::set<std::size_t>& visiting)
 {
     ObjectData& od = _objects[i];
@@ -1218,6 +1315,10 @@ osg::ref_ptr<osg::Group> Builder::build()
     chooseThemes();
 
     const json& objects = *oit;
+    if (objects.size() > _settings.limits.maxObjects)
+        throw osgLoA::InputLimitError(
+            osgLoA::InputLimits::exceeded(_source, std::to_string(objects.size()) + " city objects",
+                                          "max-objects", _settings.limits.maxObjects));
     for (auto it = objects.begin(); it != objects.end(); ++it)
     {
         if (!it->is_object()) fail("object " + inQuotes(it.key()) + " must be a JSON object");
@@ -1264,6 +1365,7 @@ osg::ref_ptr<osg::Group> Builder::build()
         }
     }
 
+    checkHierarchy();
     for (ObjectData& od : _objects)
         processObject(od);
     std::set<std::size_t> visiting;
@@ -1383,6 +1485,35 @@ void Settings::parse(const std::string& optionString)
         else if (key == "theme")
             theme = value;
     }
+    try
+    {
+        limits = osgLoA::InputLimits::fromOptions(optionString);
+    }
+    catch (const std::invalid_argument& e)
+    {
+        throw Error(e.what());
+    }
+}
+
+nlohmann::ordered_json parseJson(std::istream& in, const std::string& source,
+                                 const osgLoA::InputLimits& limits)
+{
+    using Json = nlohmann::ordered_json;
+    const Json::parser_callback_t check = [&](int depth, Json::parse_event_t event, Json& parsed)
+    {
+        if (depth > static_cast<int>(limits.maxDepth))
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                source, "JSON nested deeper than " + std::to_string(limits.maxDepth) + " levels", "max-depth",
+                limits.maxDepth));
+        if ((event == Json::parse_event_t::value || event == Json::parse_event_t::key) &&
+            parsed.is_string() && parsed.get_ref<const std::string&>().size() > limits.maxStringBytes)
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                source,
+                "a string of " + std::to_string(parsed.get_ref<const std::string&>().size()) + " bytes",
+                "max-string", limits.maxStringBytes));
+        return true;
+    };
+    return Json::parse(in, check);
 }
 
 osg::ref_ptr<osg::Group> buildScene(const nlohmann::ordered_json& doc, const std::string& sourceName,

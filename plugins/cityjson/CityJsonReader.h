@@ -6,6 +6,8 @@
 #include <osg/Group>
 #include <osgDB/Options>
 
+#include <osgLoA/util/InputLimits>
+
 #include <nlohmann/json.hpp>
 
 #include <stdexcept>
@@ -25,11 +27,18 @@ public:
 struct Settings
 {
     bool recenter = true;
-    std::string lod;   ///< empty: each object's highest LoD
-    std::string theme; ///< empty: the file's default theme, else the first one found
+    std::string lod;            ///< empty: each object's highest LoD
+    std::string theme;          ///< empty: the file's default theme, else the first one found
+    osgLoA::InputLimits limits; ///< max-depth, max-objects, max-vertices, ... (docs/reliability.md)
     /** Parses the option string; throws Error for a malformed value. */
     void parse(const std::string& optionString);
 };
+
+/** Parses JSON within the limits: nesting deeper than limits.maxDepth or a string longer than
+ *  limits.maxStringBytes throws osgLoA::InputLimitError naming `source` and the limit before
+ *  anything deeper is built; malformed JSON throws nlohmann::json::exception. */
+nlohmann::ordered_json parseJson(std::istream& in, const std::string& source,
+                                 const osgLoA::InputLimits& limits);
 
 /** Builds the scene of a parsed CityJSON document. `sourceName` names the file in messages
  *  (the stream reader passes "<stream>"); `textureDirs` are searched, in order, for texture

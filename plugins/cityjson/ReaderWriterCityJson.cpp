@@ -5,6 +5,8 @@
 // back to osgDB as FILE_NOT_HANDLED so that other plugins may try it.
 #include "CityJsonReader.h"
 
+#include <sys/stat.h>
+
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
 #include <osgDB/Registry>
@@ -27,6 +29,7 @@ public:
                        "appearance theme; default: the file's default theme, else the first found");
         supportsOption("recenter=0",
                        "keep world coordinates (default 1: re-centre on the bounding box centre)");
+        osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA CityJSON reader"; }
 
@@ -50,13 +53,28 @@ public:
             (lowerName.size() >= 10 && lowerName.compare(lowerName.size() - 10, 10, ".city.json") == 0);
         const std::string path = osgDB::findDataFile(fileName, options);
         if (path.empty()) return ReadResult::FILE_NOT_FOUND;
+        loacityjson::Settings settings;
+        try
+        {
+            if (options) settings.parse(options->getOptionString());
+        }
+        catch (const std::exception& e)
+        {
+            return ReadResult(std::string("cityjson: ") + path + ": " + e.what());
+        }
+        const std::string problem = checkRegularFile(path, settings.limits);
+        if (!problem.empty()) return ReadResult("cityjson: " + problem);
         osgDB::ifstream in(path.c_str(), std::ios::in | std::ios::binary);
         if (!in) return ReadResult("cityjson: " + path + ": cannot open the file");
 
         nlohmann::ordered_json doc;
         try
         {
-            doc = nlohmann::ordered_json::parse(in);
+            doc = loacityjson::parseJson(in, path, settings.limits);
+        }
+        catch (const osgLoA::InputLimitError& e)
+        {
+            return ReadResult(std::string("cityjson: ") + e.what());
         }
         catch (const nlohmann::json::exception& e)
         {
@@ -83,12 +101,18 @@ public:
         nlohmann::ordered_json doc;
         try
         {
-            doc = nlohmann::ordered_json::parse(in);
+            loacityjson::Settings settings;
+            if (options) settings.parse(options->getOptionString());
+            doc = loacityjson::parseJson(in, "<stream>", settings.limits);
         }
         catch (const nlohmann::json::exception& e)
         {
             return ReadResult(std::string("cityjson: <stream>: not valid JSON (truncated or malformed?): ") +
                               e.what());
+        }
+        catch (const std::exception& e)
+        {
+            return ReadResult(std::string("cityjson: ") + e.what());
         }
         osgDB::FilePathList dirs;
         if (options)
@@ -114,6 +138,19 @@ private:
         {
             return ReadResult(std::string("cityjson: ") + e.what());
         }
+    }
+
+    /** "" when path is a regular file within limits.maxFileBytes, else the problem (a FIFO or a
+     *  device such as /dev/zero would be read forever). */
+    static std::string checkRegularFile(const std::string& path, const osgLoA::InputLimits& limits)
+    {
+        struct stat st;
+        if (::stat(path.c_str(), &st) != 0) return path + ": cannot open the file";
+        if (!S_ISREG(st.st_mode)) return path + ": not a regular file (a device, FIFO or folder)";
+        if (static_cast<std::uint64_t>(st.st_size) > limits.maxFileBytes)
+            return osgLoA::InputLimits::exceeded(path, std::to_string(st.st_size) + " bytes", "max-file",
+                                                 limits.maxFileBytes);
+        return std::string();
     }
 
     /** Whether a file that failed to parse looks like (truncated) CityJSON. */
