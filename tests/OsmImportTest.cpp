@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -819,6 +820,46 @@ TEST(OsmImportTest, ErrorsAreClearNotCrashes)
     EXPECT_EQ(rw->readNode(writeText("archive.tar.bz2", "BZh9")).status(),
               osgDB::ReaderWriter::ReadResult::FILE_NOT_HANDLED);
     EXPECT_TRUE(rw->acceptsExtension("pbf"));
+}
+
+// Hostile input (issue 22 items 1, 3): a bzip2 bomb stops at max-inflated with the limit named,
+// in well under a second; absurd tag values are clamped with a warning naming the element and
+// the scene stays finite.
+TEST(OsmImportTest, BombsStopAtTheLimitAndAbsurdValuesAreClamped)
+{
+    const std::string dir = loatest::freshDirectory("OsmImportTest-hostile");
+    std::string out;
+    ASSERT_EQ(loatest::run("head -c 50000000 /dev/zero | bzip2 -9 > '" + dir + "/bomb.osm.bz2'", out), 0)
+        << out;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto rr = loadResult(dir + "/bomb.osm.bz2", "max-inflated=1000000");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_FALSE(rr.validNode());
+    EXPECT_NE(
+        rr.message().find("bomb.osm.bz2: bzip2 data inflating to more than 1000000 bytes exceeds the limit "
+                          "max-inflated=1000000"),
+        std::string::npos)
+        << rr.message();
+    EXPECT_LT(seconds, 1.0);
+    rr = loadResult(dir + "/bomb.osm.bz2", "max-inflated=x");
+    EXPECT_NE(rr.message().find("max-inflated=x"), std::string::npos) << rr.message();
+
+    OsmWriter w;
+    const std::string tall = w.box(
+        48.0, 11.0, 10, 10, {{"building", "yes"}, {"building:levels", "1e308"}, {"min_height", "1e300"}});
+    const std::string wide = w.way({w.node(48.001, 11.0), w.node(48.001, 11.001)},
+                                   {{"highway", "residential"}, {"width", "1e300"}});
+    osg::ref_ptr<osg::Node> n = load(w.write("absurd"));
+    ASSERT_TRUE(n.valid());
+    const osg::BoundingSphere bs = n->getBound();
+    EXPECT_TRUE(bs.valid() && std::isfinite(bs.radius()) && std::isfinite(bs.center().x())) << bs.radius();
+    const FeatureIndex index(*n);
+    const FeatureIndex::Entry* t = bySource(index, "way/" + tall);
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(t->feature->getBound().zMax(), 1000.0, 1e-3); // clamped to the plausible maximum
+    const FeatureIndex::Entry* r = bySource(index, "way/" + wide);
+    ASSERT_NE(r, nullptr);
+    EXPECT_LE(r->feature->getBound().xMax() - r->feature->getBound().xMin(), 1100.0);
 }
 
 // --- round trip ------------------------------------------------------------------------------

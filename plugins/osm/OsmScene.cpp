@@ -82,6 +82,9 @@ using osgLoA::FeatureType;
 constexpr double kLiftGreen = 0.10, kLiftWater = 0.15, kLiftRoadMinor = 0.20, kLiftRoadMajor = 0.25;
 constexpr double kRoofTile = 8.0, kGroundTile = 25.0, kGreenTile = 15.0, kWaterTile = 30.0;
 constexpr double kFacadeStorey = 3.2; // CityTextures: one storey of a facade tile
+// Plausibility bounds of tag values: the tallest building is 828 m, the widest roads and rivers
+// of a street map are a few hundred metres (wider ones are mapped as areas).
+constexpr double kMaxHeight = 1000.0, kMaxWidth = 1000.0;
 
 // --- ground ---------------------------------------------------------------------------------
 class Ground
@@ -632,6 +635,10 @@ private:
             minHeight = 0.0;
             if (parseNumber(tag(t, "building:min_level"), minLevel)) minHeight = minLevel * _o.storey;
         }
+        // Absurd values (building:levels=1e308 made infinite geometry) are clamped, with a warning
+        // naming the element: no building is taller than kMaxHeight.
+        height = plausible(o, "height", height, kMaxHeight);
+        minHeight = plausible(o, "min_height", minHeight, kMaxHeight - _o.storey);
         if (height <= minHeight + 0.1)
         {
             OSG_INFO << "osm: " << o.sourceId << ": height " << height << " m not above min_height "
@@ -747,9 +754,19 @@ private:
         }
     }
 
-    // Roads and waterway lines: flat ribbons with mitered joints (bevelled past the limit).
-    osg::ref_ptr<osg::Geode> ribbon(OsmObject& o, const Classification& c)
+    /** value, or max (with a warning naming the element) when it is not finite or above max. */
+    static double plausible(const OsmObject& o, const char* what, double value, double max)
     {
+        if (std::isfinite(value) && value <= max) return value;
+        OSG_WARN << "osm: " << o.sourceId << ": " << what << " " << value
+                 << " m is not plausible; clamped to " << max << " m" << std::endl;
+        return max;
+    }
+
+    // Roads and waterway lines: flat ribbons with mitered joints (bevelled past the limit).
+    osg::ref_ptr<osg::Geode> ribbon(OsmObject& o, Classification c)
+    {
+        c.width = plausible(o, "width", c.width, kMaxWidth);
         Ring pts = o.line;
         if (!cleanLine(pts)) return nullptr;
         bool closed = pts.size() >= 4 && (pts.front() - pts.back()).length() <= 1e-4;

@@ -7,6 +7,8 @@
 // transverse Mercator frame centred on the data; docs/osm.md has the options and the tag table.
 #include "OsmScene.h"
 
+#include <osgLoA/util/InputLimits>
+
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
 #include <osgDB/Registry>
@@ -17,11 +19,13 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <sys/stat.h>
 #include <vector>
 
 namespace
@@ -35,11 +39,25 @@ public:
     ErrorCollector() { CPLPushErrorHandlerEx(&ErrorCollector::handler, this); }
     ~ErrorCollector() { CPLPopErrorHandler(); }
     const std::vector<std::string>& failures() const { return _failures; }
+    /** The distinct failures in order, each once with its count ("MESSAGE (x90000)"), at most
+     *  three (GDAL repeats one message per element: a file gave 90,000 lines of one). */
     std::string joined() const
     {
-        std::string s;
+        std::vector<std::pair<std::string, std::size_t>> distinct;
         for (const std::string& f : _failures)
-            s += (s.empty() ? "" : "; ") + f;
+        {
+            auto it =
+                std::find_if(distinct.begin(), distinct.end(), [&](const auto& d) { return d.first == f; });
+            if (it == distinct.end())
+                distinct.emplace_back(f, 1);
+            else
+                ++it->second;
+        }
+        std::string s;
+        for (std::size_t i = 0; i < distinct.size() && i < 3; ++i)
+            s += (s.empty() ? "" : "; ") + distinct[i].first +
+                 (distinct[i].second > 1 ? " (x" + std::to_string(distinct[i].second) + ")" : "");
+        if (distinct.size() > 3) s += "; and " + std::to_string(distinct.size() - 3) + " other errors";
         return s;
     }
 
@@ -60,7 +78,9 @@ private:
 class VsiMemBz2
 {
 public:
-    explicit VsiMemBz2(const std::string& path)
+    /** Inflates at most limits.maxInflatedBytes (a 1.7 kB file inflated to 2 GiB was read
+     *  whole): more is an InputLimitError naming the file. */
+    VsiMemBz2(const std::string& path, const osgLoA::InputLimits& limits)
     {
         FILE* f = std::fopen(path.c_str(), "rb");
         if (!f) throw std::runtime_error("cannot open '" + path + "'");
@@ -76,6 +96,15 @@ public:
         {
             const int n = BZ2_bzRead(&err, bz, buf, sizeof buf);
             if (err != BZ_OK && err != BZ_STREAM_END) break;
+            if (_data.size() + static_cast<std::size_t>(n) > limits.maxInflatedBytes)
+            {
+                BZ2_bzReadClose(&err, bz);
+                std::fclose(f);
+                throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                    path,
+                    "bzip2 data inflating to more than " + std::to_string(limits.maxInflatedBytes) + " bytes",
+                    "max-inflated", limits.maxInflatedBytes));
+            }
             _data.insert(_data.end(), buf, buf + n);
             if (err == BZ_STREAM_END)
             {
@@ -160,6 +189,7 @@ public:
         supportsOption("terrainCell=M", "ground grid spacing (default 25, or 5 with a DEM)");
         supportsOption("terrain=on|off", "make the ground feature (default on)");
         supportsOption("miterLimit=R", "ribbon joints bevelled beyond R half widths (default 3)");
+        osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA OpenStreetMap importer (GDAL/OGR)"; }
 
@@ -199,7 +229,14 @@ public:
 
             ErrorCollector errors;
             std::unique_ptr<VsiMemBz2> mem;
-            if (bz2) mem.reset(new VsiMemBz2(path));
+            const osgLoA::InputLimits limits =
+                osgLoA::InputLimits::fromOptions(options ? options->getOptionString() : std::string());
+            struct stat st;
+            if (::stat(path.c_str(), &st) == 0 &&
+                static_cast<std::uint64_t>(st.st_size) > limits.maxFileBytes)
+                throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                    path, std::to_string(st.st_size) + " bytes", "max-file", limits.maxFileBytes));
+            if (bz2) mem.reset(new VsiMemBz2(path, limits));
             const std::string openName = mem ? mem->name() : path;
             const char* drivers[] = {"OSM", nullptr};
             GDALDatasetUniquePtr ds(GDALDataset::Open(openName.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
@@ -266,6 +303,10 @@ public:
                     continue;
                 }
                 objects.push_back(std::move(o));
+                if (objects.size() > limits.maxObjects)
+                    throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                        path, "more than " + std::to_string(limits.maxObjects) + " OpenStreetMap elements",
+                        "max-objects", limits.maxObjects));
             }
             if (!errors.failures().empty())
                 throw std::runtime_error("'" + fileName + "' is malformed: " + errors.joined());
