@@ -179,3 +179,38 @@ TEST(InputLimitsTest, CityJsonReproducersAreRefusedQuicklyWithTheLimitNamed)
               std::string::npos);
     EXPECT_LT(seconds, 2.0);
 }
+
+// The .loa reproducers: a file naming itself, two naming each other, a pseudo-loader chain
+// 4,000 long, .loa files nested 100 deep, /dev/zero as a model: one message each, at once.
+TEST(InputLimitsTest, LoaCyclesDepthAndDevicesAreRefused)
+{
+    const std::string dir = loatest::freshDirectory("InputLimitsLoa");
+    write(dir + "/self.loa", R"({"models": ["self.loa"]})");
+    write(dir + "/a.loa", R"({"models": ["b.loa"]})");
+    write(dir + "/b.loa", R"({"models": ["a.loa"]})");
+    for (int i = 0; i < 100; ++i)
+        write(dir + "/n" + std::to_string(i) + ".loa",
+              "{\"models\": [\"n" + std::to_string(i + 1) + ".loa\"]}");
+    ASSERT_EQ(::symlink("/dev/zero", (dir + "/zero.osgt").c_str()), 0);
+    write(dir + "/zero.loa", R"({"models": ["zero.osgt"]})");
+    std::string chain = dir + "/x.osgt";
+    for (int i = 0; i < 4000; ++i)
+        chain += ".loa";
+    struct Case
+    {
+        std::string path, message;
+    };
+    for (const Case& c :
+         {Case{dir + "/self.loa",
+               "is already being read: the .loa files name each other (self.loa -> self.loa)"},
+          Case{dir + "/a.loa", "(a.loa -> b.loa -> a.loa)"},
+          Case{dir + "/n0.loa", "nested more than 64 deep exceeds the limit max-depth=64"},
+          Case{chain, "exceeds the limit max-depth=64"},
+          Case{dir + "/zero.loa", "zero.osgt' is not a regular file (a device or FIFO)"}})
+    {
+        double seconds = 0.0;
+        const std::string message = readMessage(c.path, "", seconds);
+        EXPECT_NE(message.find(c.message), std::string::npos) << message.substr(0, 400);
+        EXPECT_LT(seconds, 2.0) << c.message;
+    }
+}

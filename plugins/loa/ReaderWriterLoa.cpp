@@ -23,6 +23,7 @@
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
+#include <osgLoA/util/InputLimits>
 
 #include <osg/Notify>
 #include <osgDB/FileNameUtils>
@@ -34,8 +35,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <vector>
 
 namespace
@@ -56,6 +59,47 @@ osgDB::ReaderWriter::ReadResult toResult(const LoaError& e)
     rr.message() = "loa: " + e.message;
     return rr;
 }
+
+/** The .loa reads in progress on this thread (osgDB reads nested models in the caller's thread):
+ *  their depth is bounded by max-depth and a .loa file already being read is a cycle (a file that
+ *  names itself, two that name each other, a pseudo-loader chain x.loa.loa... 4,000 long). */
+struct ReadStack
+{
+    static std::vector<std::string>& names()
+    {
+        thread_local std::vector<std::string> stack;
+        return stack;
+    }
+    ReadStack(const std::string& name, const std::string& file, unsigned maxDepth)
+    {
+        std::vector<std::string>& stack = names();
+        if (stack.size() >= maxDepth)
+            throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
+                           osgLoA::InputLimits::exceeded("'" + name + "'",
+                                                         ".loa files and pseudo-loaders nested more than " +
+                                                             std::to_string(maxDepth) + " deep",
+                                                         "max-depth", maxDepth)};
+        if (!file.empty())
+        {
+            char* real = ::realpath(file.c_str(), nullptr);
+            const std::string key = real ? real : file;
+            std::free(real);
+            if (std::find(stack.begin(), stack.end(), key) != stack.end())
+            {
+                std::string chain;
+                for (const std::string& s : stack)
+                    if (!chain.empty() || s == key) chain += osgDB::getSimpleFileName(s) + " -> ";
+                throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
+                               "'" + name + "' is already being read: the .loa files name each other (" +
+                                   chain + osgDB::getSimpleFileName(key) + ")"};
+            }
+            stack.push_back(key);
+        }
+        else
+            stack.push_back("pseudo:" + name);
+    }
+    ~ReadStack() { names().pop_back(); }
+};
 
 std::string keyOf(const std::string& token)
 {
@@ -242,6 +286,12 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
                                   const std::string& context)
 {
     typedef osgDB::ReaderWriter::ReadResult RR;
+    // A device or FIFO (/dev/zero, a link to it) would be read forever.
+    const std::string found = osgDB::findDataFile(name, options);
+    struct stat st;
+    if (!found.empty() && ::stat(found.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+        throw LoaError{RR::ERROR_IN_READING_FILE,
+                       context + "model '" + name + "' is not a regular file (a device or FIFO)"};
     RR rr = osgDB::Registry::instance()->readNode(name, options);
     if (rr.validNode()) return rr.getNode();
     const bool onDisk = !osgDB::findDataFile(name, options).empty();
@@ -274,7 +324,7 @@ std::string relativeTo(const std::string& directory, const std::string& path)
     return osgDB::concatPaths(directory, path);
 }
 
-Request parseLoaFile(const std::string& path)
+Request parseLoaFile(const std::string& path, const osgLoA::InputLimits& limits)
 {
     Request r;
     r.context = "'" + path + "': ";
@@ -282,12 +332,33 @@ Request parseLoaFile(const std::string& path)
     osgDB::ifstream in(path.c_str());
     if (!in)
         throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE, r.context + "cannot open"};
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text;
+    char buffer[65536];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+    {
+        text.append(buffer, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > limits.maxStringBytes)
+            throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
+                           osgLoA::InputLimits::exceeded("'" + path + "'",
+                                                         "a .loa file of more than " +
+                                                             std::to_string(limits.maxStringBytes) + " bytes",
+                                                         "max-string", limits.maxStringBytes)};
+    }
     nlohmann::json j;
     try
     {
-        j = nlohmann::json::parse(text.str(), nullptr, true, true); // comments allowed
+        const nlohmann::json::parser_callback_t depth =
+            [&](int d, nlohmann::json::parse_event_t, nlohmann::json&)
+        {
+            if (d > static_cast<int>(limits.maxDepth))
+                throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
+                               osgLoA::InputLimits::exceeded("'" + path + "'",
+                                                             "JSON nested deeper than " +
+                                                                 std::to_string(limits.maxDepth) + " levels",
+                                                             "max-depth", limits.maxDepth)};
+            return true;
+        };
+        j = nlohmann::json::parse(text, depth, true, true); // comments allowed
     }
     catch (const nlohmann::json::parse_error& e)
     {
@@ -324,6 +395,9 @@ Request parseLoaFile(const std::string& path)
     else
         fail("'models' must be a list of file names, not " + models.dump());
     if (names.empty()) fail("'models' is empty");
+    if (names.size() > limits.maxObjects)
+        fail(osgLoA::InputLimits::exceeded("models", std::to_string(names.size()), "max-objects",
+                                           limits.maxObjects));
     for (const std::string& m : names)
     {
         if (m.empty()) fail("'models' holds an empty file name");
@@ -352,6 +426,7 @@ public:
         supportsOption("rules=FILE",
                        "classification rule set (.osgt/.osgb/.osgx) tried before the built-in rules");
         supportsOption("rules-only=FILE", "classification rule set used instead of the built-in rules");
+        osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA level-of-abstraction pseudo-loader"; }
 
@@ -387,10 +462,14 @@ private:
     {
         const LoaOptions opts = LoaOptions::parse(options);
 
+        const osgLoA::InputLimits limits =
+            osgLoA::InputLimits::fromOptions(options ? options->getOptionString() : std::string());
         Request request;
         const std::string file = osgDB::findDataFile(fileName, options);
-        if (!file.empty() && osgDB::fileType(file) == osgDB::REGULAR_FILE)
-            request = parseLoaFile(file);
+        const bool isFile = !file.empty() && osgDB::fileType(file) == osgDB::REGULAR_FILE;
+        const ReadStack guard(fileName, isFile ? file : std::string(), limits.maxDepth);
+        if (isFile)
+            request = parseLoaFile(file, limits);
         else
         {
             const std::string inner = osgDB::getNameLessExtension(fileName);
