@@ -3,6 +3,7 @@
 #include <osgLoA/Version>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/util/ModelValidation>
 
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
@@ -177,10 +178,19 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path)
     }
     if (osgDB::fileType(path) == osgDB::DIRECTORY)
         throw std::runtime_error("cannot read '" + path + "': it is a directory");
+    if (osgDB::fileType(path) != osgDB::REGULAR_FILE)
+        throw std::runtime_error("cannot read '" + path + "': not a regular file (a device or FIFO)");
     const std::string ext = osgDB::getLowerCaseFileExtension(path);
     osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
     if (!rw)
         throw std::runtime_error("cannot read '" + path + "': no osgDB plugin reads '." + ext + "' files");
+    // OSG 3.6.5's text reader loops forever on a truncated file: its structure is checked first.
+    if (ext == "osgt")
+    {
+        const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(path);
+        if (!problem.empty())
+            throw std::runtime_error("cannot read '" + path + "': the OSG text file " + problem);
+    }
     osgDB::ReaderWriter::ReadResult rr = rw->readNode(path, osgDB::Registry::instance()->getOptions());
     if (!rr.validNode())
     {
@@ -191,7 +201,10 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path)
                       : "the file is malformed or holds no scene";
         throw std::runtime_error("cannot read '" + path + "': " + why);
     }
-    return rr.getNode();
+    // Indices past their arrays, images that state more than they hold: dropped with warnings.
+    osg::ref_ptr<osg::Node> node = rr.getNode();
+    osgLoA::ModelValidation::validate(*node, path);
+    return node;
 }
 
 std::string CameraChoice::describe() const

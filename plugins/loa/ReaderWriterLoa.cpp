@@ -24,6 +24,7 @@
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/InputLimits>
+#include <osgLoA/util/ModelValidation>
 
 #include <osg/Notify>
 #include <osgDB/FileNameUtils>
@@ -292,8 +293,20 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
     if (!found.empty() && ::stat(found.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
         throw LoaError{RR::ERROR_IN_READING_FILE,
                        context + "model '" + name + "' is not a regular file (a device or FIFO)"};
+    if (!found.empty() && osgDB::getLowerCaseFileExtension(found) == "osgt")
+    {
+        // OSG 3.6.5's text reader loops forever on a truncated file.
+        const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(found);
+        if (!problem.empty())
+            throw LoaError{RR::ERROR_IN_READING_FILE,
+                           context + "cannot read model '" + name + "': the OSG text file " + problem};
+    }
     RR rr = osgDB::Registry::instance()->readNode(name, options);
-    if (rr.validNode()) return rr.getNode();
+    if (rr.validNode())
+    {
+        osgLoA::ModelValidation::validate(*rr.getNode(), name);
+        return rr.getNode();
+    }
     const bool onDisk = !osgDB::findDataFile(name, options).empty();
     if (rr.status() == RR::FILE_NOT_FOUND || (rr.status() == RR::FILE_NOT_HANDLED && !onDisk))
         throw LoaError{RR::FILE_NOT_FOUND,

@@ -1,0 +1,206 @@
+#include <osgLoA/util/ModelValidation>
+
+#include <osg/Geode>
+#include <osg/Geometry>
+#include <osg/Notify>
+#include <osg/StateSet>
+#include <osg/Texture>
+
+#include <cmath>
+#include <fstream>
+#include <malloc.h>
+#include <set>
+
+namespace osgLoA
+{
+namespace
+{
+std::string nameOf(const osg::Object& o, const char* kind)
+{
+    return o.getName().empty() ? std::string("an unnamed ") + kind
+                               : std::string(kind) + " '" + o.getName() + "'";
+}
+
+/** Why geometry cannot be drawn safely, or "". */
+std::string geometryProblem(const osg::Geometry& g)
+{
+    const osg::Array* vertices = g.getVertexArray();
+    const unsigned n = vertices ? vertices->getNumElements() : 0u;
+    if (g.getNumPrimitiveSets() > 0 && !vertices) return "primitives without a vertex array";
+    if (const auto* v3 = dynamic_cast<const osg::Vec3Array*>(vertices))
+        for (const osg::Vec3& p : *v3)
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+                return "a vertex that is not finite";
+    // Per-vertex arrays as long as the vertex array.
+    std::vector<const osg::Array*> arrays = {g.getNormalArray(), g.getColorArray(),
+                                             g.getSecondaryColorArray(), g.getFogCoordArray()};
+    for (unsigned u = 0; u < g.getNumTexCoordArrays(); ++u)
+        arrays.push_back(g.getTexCoordArray(u));
+    for (unsigned a = 0; a < g.getNumVertexAttribArrays(); ++a)
+        arrays.push_back(g.getVertexAttribArray(a));
+    for (const osg::Array* a : arrays)
+        if (a && a->getBinding() == osg::Array::BIND_PER_VERTEX && a->getNumElements() < n)
+            return "a per-vertex array of " + std::to_string(a->getNumElements()) + " elements for " +
+                   std::to_string(n) + " vertices";
+    for (unsigned i = 0; i < g.getNumPrimitiveSets(); ++i)
+    {
+        const osg::PrimitiveSet* p = g.getPrimitiveSet(i);
+        if (!p) return "an empty primitive set";
+        if (const auto* da = dynamic_cast<const osg::DrawArrays*>(p))
+        {
+            if (da->getFirst() < 0 || da->getCount() < 0 ||
+                static_cast<unsigned long long>(da->getFirst()) +
+                        static_cast<unsigned long long>(da->getCount()) >
+                    n)
+                return "DrawArrays " + std::to_string(da->getFirst()) + "+" + std::to_string(da->getCount()) +
+                       " past " + std::to_string(n) + " vertices";
+        }
+        else if (const auto* dal = dynamic_cast<const osg::DrawArrayLengths*>(p))
+        {
+            unsigned long long end = static_cast<unsigned long long>(std::max(0, dal->getFirst()));
+            for (GLsizei len : *dal)
+                end += static_cast<unsigned long long>(std::max<GLsizei>(0, len));
+            if (dal->getFirst() < 0 || end > n)
+                return "DrawArrayLengths past " + std::to_string(n) + " vertices";
+        }
+        else if (const auto* de = dynamic_cast<const osg::DrawElements*>(p))
+        {
+            for (unsigned k = 0; k < de->getNumIndices(); ++k)
+                if (de->index(k) >= n)
+                    return "index " + std::to_string(de->index(k)) + " past " + std::to_string(n) +
+                           " vertices";
+        }
+        else if (p->getNumIndices() > 0 && n == 0)
+            return "primitives without vertices";
+    }
+    return std::string();
+}
+
+/** Why an image's data cannot hold its stated size, or "". */
+std::string imageProblem(const osg::Image& image)
+{
+    if (image.s() == 0 || image.t() == 0 || image.r() == 0) return std::string(); // already empty
+    if (!image.data())
+        return "no data for a " + std::to_string(image.s()) + "x" + std::to_string(image.t()) + " image";
+    const unsigned long long stated = image.getTotalSizeInBytesIncludingMipmaps();
+    if (image.getAllocationMode() == osg::Image::USE_NEW_DELETE ||
+        image.getAllocationMode() == osg::Image::USE_MALLOC_FREE)
+    {
+        const unsigned long long held = ::malloc_usable_size(const_cast<unsigned char*>(image.data()));
+        if (stated > held)
+            return "states " + std::to_string(image.s()) + "x" + std::to_string(image.t()) + "x" +
+                   std::to_string(image.r()) + " (" + std::to_string(stated) + " bytes) but holds " +
+                   std::to_string(held) + " bytes";
+    }
+    return std::string();
+}
+
+class Validator : public osg::NodeVisitor
+{
+public:
+    Validator(ModelValidation& result, const std::string& source)
+        : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), _result(result), _source(source)
+    {
+    }
+
+    void apply(osg::Node& node) override
+    {
+        check(node.getStateSet());
+        traverse(node);
+    }
+
+    void apply(osg::Geode& geode) override
+    {
+        check(geode.getStateSet());
+        for (unsigned i = geode.getNumDrawables(); i-- > 0;)
+        {
+            osg::Drawable* d = geode.getDrawable(i);
+            if (!d) continue;
+            check(d->getStateSet());
+            const osg::Geometry* g = d->asGeometry();
+            const std::string why = g ? geometryProblem(*g) : std::string();
+            if (why.empty()) continue;
+            const std::string what = nameOf(*d, "drawable") + " in " + nameOf(geode, "Geode") + ": " + why;
+            OSG_WARN << _source << ": " << what << "; dropped" << std::endl;
+            _result.removedDrawables.push_back(what);
+            geode.removeDrawables(i, 1);
+        }
+        traverse(geode);
+    }
+
+private:
+    void check(osg::StateSet* ss)
+    {
+        if (!ss || !_seen.insert(ss).second) return;
+        for (unsigned u = 0; u < ss->getTextureAttributeList().size(); ++u)
+        {
+            auto* t = dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE));
+            if (!t) continue;
+            for (unsigned i = 0; i < t->getNumImages(); ++i)
+            {
+                osg::Image* image = t->getImage(i);
+                if (!image) continue;
+                const std::string why = imageProblem(*image);
+                if (why.empty()) continue;
+                const std::string name = image->getFileName().empty()
+                                             ? nameOf(*image, "image")
+                                             : "image '" + image->getFileName() + "'";
+                OSG_WARN << _source << ": " << name << " " << why << "; left empty" << std::endl;
+                _result.emptiedImages.push_back(name + ": " + why);
+                const std::string fileName = image->getFileName();
+                image->setImage(0, 0, 0, image->getInternalTextureFormat(), image->getPixelFormat(),
+                                image->getDataType(), nullptr, osg::Image::NO_DELETE);
+                image->setFileName(fileName);
+            }
+        }
+    }
+
+    ModelValidation& _result;
+    std::string _source;
+    std::set<const osg::StateSet*> _seen;
+};
+} // namespace
+
+ModelValidation ModelValidation::validate(osg::Node& scene, const std::string& source)
+{
+    ModelValidation result;
+    Validator v(result, source);
+    scene.accept(v);
+    if (!result.removedDrawables.empty()) scene.dirtyBound();
+    return result;
+}
+
+std::string ModelValidation::checkOsgtStructure(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "cannot be opened";
+    long depth = 0;
+    bool inString = false, escaped = false;
+    char buffer[65536];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+        for (std::streamsize i = 0; i < in.gcount(); ++i)
+        {
+            const char c = buffer[i];
+            if (inString)
+            {
+                if (escaped)
+                    escaped = false;
+                else if (c == '\\')
+                    escaped = true;
+                else if (c == '"')
+                    inString = false;
+                continue;
+            }
+            if (c == '"')
+                inString = true;
+            else if (c == '{')
+                ++depth;
+            else if (c == '}' && --depth < 0)
+                return "has a '}' that closes no block";
+        }
+    if (inString) return "ends inside a quoted string (truncated?)";
+    if (depth > 0) return "ends inside " + std::to_string(depth) + " open blocks (truncated?)";
+    return std::string();
+}
+
+} // namespace osgLoA

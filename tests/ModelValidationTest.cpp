@@ -1,0 +1,177 @@
+// Models validated after load (issue 22 items 2, 3): an inline image that states more than it
+// holds is emptied (it was read past its buffer), geometry indexing past its vertices or with
+// non-finite vertices is dropped with a warning naming it (OSG's bound code read past the array
+// of a bit-flipped .osgb), and a truncated .osgt model is refused before OSG's text reader,
+// which looped forever on it; through the library and through the tools.
+#include "support/TestSupport.h"
+
+#include <osgLoA/util/ModelValidation>
+
+#include <osg/Geode>
+#include <osg/Geometry>
+#include <osg/Texture2D>
+#include <osgDB/ReadFile>
+#include <osgDB/WriteFile>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+using osgLoA::ModelValidation;
+
+namespace
+{
+osg::ref_ptr<osg::Geometry> triangle(const std::string& name)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    g->setName(name);
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    v->push_back({0, 0, 0});
+    v->push_back({1, 0, 0});
+    v->push_back({0, 1, 0});
+    g->setVertexArray(v.get());
+    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
+    return g;
+}
+
+/** A Geode with one textured triangle whose 4x4 image is written inline. */
+std::string writeTexturedModel(const std::string& path)
+{
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    osg::ref_ptr<osg::Geometry> g = triangle("tri");
+    osg::ref_ptr<osg::Image> image = new osg::Image;
+    image->allocateImage(4, 4, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    std::memset(image->data(), 200, 64);
+    image->setFileName("tex.png");
+    g->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(image.get()));
+    geode->addDrawable(g.get());
+    osg::ref_ptr<osgDB::Options> o = new osgDB::Options("WriteImageHint=IncludeData");
+    EXPECT_TRUE(osgDB::writeNodeFile(*geode, path, o.get()));
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to)
+{
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+} // namespace
+
+TEST(ModelValidationTest, ImagesThatStateMoreThanTheyHoldAreEmptied)
+{
+    const std::string dir = loatest::freshDirectory("ModelValidationImages");
+    const std::string text = writeTexturedModel(dir + "/ok.osgt");
+    osg::ref_ptr<osg::Node> ok = osgDB::readRefNodeFile(dir + "/ok.osgt");
+    ASSERT_TRUE(ok.valid());
+    EXPECT_TRUE(ModelValidation::validate(*ok, "ok.osgt").emptiedImages.empty());
+    for (const char* size : {"Size 64 64 1", "Size 4096 4096 1"})
+    {
+        const std::string path = dir + "/lying.osgt";
+        std::ofstream(path) << replaced(text, "Size 4 4 1", size);
+        osg::ref_ptr<osg::Node> n = osgDB::readRefNodeFile(path);
+        ASSERT_TRUE(n.valid());
+        const ModelValidation v = ModelValidation::validate(*n, path);
+        ASSERT_EQ(v.emptiedImages.size(), 1u) << size;
+        EXPECT_NE(v.emptiedImages.front().find("image 'tex.png': states"), std::string::npos)
+            << v.emptiedImages.front();
+        // The batch tool reports the emptied image as unreadable (exit 4), no overrun, no crash.
+        std::string out;
+        EXPECT_EQ(loatest::run(std::string("'") + LOA_PREFILTER_EXE + "' '" + path +
+                                   "' --filter gaussian --cache '" + dir + "/cache'",
+                               out),
+                  4)
+            << out;
+        EXPECT_NE(out.find("tex.png"), std::string::npos) << out;
+    }
+}
+
+TEST(ModelValidationTest, GeometryPastItsArraysIsDroppedWithItsName)
+{
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->setName("block");
+    geode->addDrawable(triangle("good").get());
+    osg::ref_ptr<osg::Geometry> pastIndices = triangle("flipped");
+    osg::ref_ptr<osg::DrawElementsUShort> indices = new osg::DrawElementsUShort(GL_TRIANGLES);
+    for (unsigned short i : {0, 1, 40000})
+        indices->push_back(i);
+    pastIndices->setPrimitiveSet(0, indices.get());
+    geode->addDrawable(pastIndices.get());
+    osg::ref_ptr<osg::Geometry> pastArrays = triangle("ranges");
+    pastArrays->setPrimitiveSet(0, new osg::DrawArrays(GL_TRIANGLES, 1, 3));
+    geode->addDrawable(pastArrays.get());
+    osg::ref_ptr<osg::Geometry> shortNormals = triangle("normals");
+    osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array(1);
+    shortNormals->setNormalArray(normals.get(), osg::Array::BIND_PER_VERTEX);
+    geode->addDrawable(shortNormals.get());
+    osg::ref_ptr<osg::Geometry> nan = triangle("nan");
+    (*static_cast<osg::Vec3Array*>(nan->getVertexArray()))[1].x() = std::nanf("");
+    geode->addDrawable(nan.get());
+
+    // Through a binary file, as a bit-flipped .osgb arrives.
+    const std::string dir = loatest::freshDirectory("ModelValidationGeometry");
+    ASSERT_TRUE(osgDB::writeNodeFile(*geode, dir + "/bad.osgb"));
+    osg::ref_ptr<osg::Node> n = osgDB::readRefNodeFile(dir + "/bad.osgb");
+    ASSERT_TRUE(n.valid());
+    const ModelValidation v = ModelValidation::validate(*n, "bad.osgb");
+    ASSERT_EQ(v.removedDrawables.size(), 4u);
+    const std::string all = v.removedDrawables[0] + "|" + v.removedDrawables[1] + "|" +
+                            v.removedDrawables[2] + "|" + v.removedDrawables[3];
+    EXPECT_NE(all.find("drawable 'flipped' in Geode 'block': index 40000 past 3 vertices"), std::string::npos)
+        << all;
+    EXPECT_NE(all.find("drawable 'ranges' in Geode 'block': DrawArrays 1+3 past 3 vertices"),
+              std::string::npos)
+        << all;
+    EXPECT_NE(
+        all.find("drawable 'normals' in Geode 'block': a per-vertex array of 1 elements for 3 vertices"),
+        std::string::npos)
+        << all;
+    EXPECT_NE(all.find("drawable 'nan' in Geode 'block': a vertex that is not finite"), std::string::npos)
+        << all;
+    ASSERT_EQ(n->asGeode()->getNumDrawables(), 1u);
+    EXPECT_EQ(n->asGeode()->getDrawable(0)->getName(), "good");
+    const osg::BoundingSphere bs = n->getBound();
+    EXPECT_TRUE(std::isfinite(bs.radius()));
+
+    // The tool reads it, warns and goes on with what is valid.
+    std::string out;
+    EXPECT_EQ(loatest::run(std::string("'") + LOA_CLASSIFY_EXE + "' '" + dir + "/bad.osgb' --json", out), 0)
+        << out;
+    EXPECT_NE(out.find("index 40000 past 3 vertices; dropped"), std::string::npos) << out;
+}
+
+TEST(ModelValidationTest, TruncatedTextModelsAreRefusedAtOnce)
+{
+    const std::string dir = loatest::freshDirectory("ModelValidationTruncated");
+    const std::string text = writeTexturedModel(dir + "/whole.osgt");
+    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/whole.osgt"), "");
+    std::ofstream(dir + "/half.osgt") << text.substr(0, text.size() / 2);
+    EXPECT_NE(ModelValidation::checkOsgtStructure(dir + "/half.osgt").find("open blocks (truncated?)"),
+              std::string::npos);
+    std::ofstream(dir + "/quote.osgt") << text.substr(0, text.find("tex.png") + 3);
+    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/quote.osgt"),
+              "ends inside a quoted string (truncated?)");
+    std::ofstream(dir + "/extra.osgt") << text << "}\n";
+    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/extra.osgt"), "has a '}' that closes no block");
+    for (const char* tool : {LOA_CLASSIFY_EXE, LOA_RENDER_EXE})
+    {
+        std::string out;
+        const auto t0 = std::chrono::steady_clock::now();
+        EXPECT_EQ(
+            loatest::run("timeout 60 '" + std::string(tool) + "' '" + dir + "/half.osgt' --size 64x48", out),
+            1)
+            << out;
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+        EXPECT_NE(out.find("half.osgt': the OSG text file ends inside"), std::string::npos) << out;
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+    }
+}
