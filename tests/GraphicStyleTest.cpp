@@ -33,14 +33,6 @@ std::string fileBytes(const std::string& path)
     return s.str();
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to)
-{
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos) text.replace(at, from.size(), to);
-    return text;
-}
-
 /** Writes style to dir/NAME-first.EXT, reads it, writes that to NAME-second.EXT; the two files
  *  must be the same bytes. Returns the style read. */
 osg::ref_ptr<GraphicStyle> roundTrip(const GraphicStyle& style, const std::string& dir,
@@ -500,7 +492,7 @@ TEST(GraphicStyleTest, BadValuesInAFileFailTheRead)
     for (const auto& c : cases)
     {
         const std::string path = dir + "/bad" + std::to_string(i++) + ".osgt";
-        std::ofstream(path, std::ios::binary) << replaced(text, c.first, c.second);
+        std::ofstream(path, std::ios::binary) << loatest::replaced(text, c.first, c.second);
         osg::ref_ptr<osg::Object> o = osgDB::readRefObjectFile(path);
         EXPECT_FALSE(o.valid() && dynamic_cast<GraphicStyle*>(o.get())) << c.second << " read without error";
     }

@@ -52,18 +52,7 @@ std::string writeTexturedModel(const std::string& path)
     geode->addDrawable(g.get());
     osg::ref_ptr<osgDB::Options> o = new osgDB::Options("WriteImageHint=IncludeData");
     EXPECT_TRUE(osgDB::writeNodeFile(*geode, path, o.get()));
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to)
-{
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos) text.replace(at, from.size(), to);
-    return text;
+    return loatest::fileBytes(path);
 }
 } // namespace
 
@@ -77,7 +66,7 @@ TEST(ModelValidationTest, ImagesThatStateMoreThanTheyHoldAreEmptied)
     for (const char* size : {"Size 64 64 1", "Size 4096 4096 1"})
     {
         const std::string path = dir + "/lying.osgt";
-        std::ofstream(path) << replaced(text, "Size 4 4 1", size);
+        std::ofstream(path) << loatest::replaced(text, "Size 4 4 1", size);
         osg::ref_ptr<osg::Node> n = osgDB::readRefNodeFile(path);
         ASSERT_TRUE(n.valid());
         const ModelValidation v = ModelValidation::validate(*n, path);
@@ -155,13 +144,13 @@ TEST(ModelValidationTest, TruncatedTextModelsAreRefusedAtOnce)
     const std::string text = writeTexturedModel(dir + "/whole.osgt");
     EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/whole.osgt"), "");
     std::ofstream(dir + "/half.osgt") << text.substr(0, text.size() / 2);
-    EXPECT_NE(ModelValidation::checkOsgtStructure(dir + "/half.osgt").find("open blocks (truncated?)"),
-              std::string::npos);
+    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/half.osgt"),
+              "the text ends inside an object ('{' and '}' do not match)");
     std::ofstream(dir + "/quote.osgt") << text.substr(0, text.find("tex.png") + 3);
     EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/quote.osgt"),
-              "ends inside a quoted string (truncated?)");
+              "the text ends inside a quoted string");
     std::ofstream(dir + "/extra.osgt") << text << "}\n";
-    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/extra.osgt"), "has a '}' that closes no block");
+    EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/extra.osgt"), "a '}' closes no object");
     for (const char* tool : {LOA_CLASSIFY_EXE, LOA_RENDER_EXE})
     {
         std::string out;
@@ -171,7 +160,9 @@ TEST(ModelValidationTest, TruncatedTextModelsAreRefusedAtOnce)
             1)
             << out;
         EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
-        EXPECT_NE(out.find("half.osgt': the OSG text file ends inside"), std::string::npos) << out;
+        EXPECT_NE(out.find("half.osgt': the OSG text file is incomplete: the text ends inside an object"),
+                  std::string::npos)
+            << out;
         EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
     }
 }

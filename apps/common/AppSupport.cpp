@@ -189,7 +189,8 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path)
     {
         const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(path);
         if (!problem.empty())
-            throw std::runtime_error("cannot read '" + path + "': the OSG text file " + problem);
+            throw std::runtime_error("cannot read '" + path +
+                                     "': the OSG text file is incomplete: " + problem);
     }
     osgDB::ReaderWriter::ReadResult rr = rw->readNode(path, osgDB::Registry::instance()->getOptions());
     if (!rr.validNode())

@@ -12,6 +12,8 @@
 
 #include "ScenarioTextParser.h"
 
+#include <osgLoA/util/ModelValidation>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -351,42 +353,7 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::readFile(const std::string& path)
 
 std::string ScenarioLibrary::checkAsciiStructure(const std::string& text)
 {
-    bool inString = false, sawObject = false;
-    long depth = 0;
-    char last = 0;
-    for (std::size_t i = 0; i < text.size(); ++i)
-    {
-        const char c = text[i];
-        const unsigned char u = static_cast<unsigned char>(c);
-        if (u < 0x20 && c != '\t' && c != '\n' && c != '\r')
-        {
-            // OSG's reader can loop on them too, and no writer puts them in a text file.
-            std::ostringstream s;
-            s << "the text contains the control character 0x" << std::hex << int(u) << " at byte " << std::dec
-              << i;
-            return s.str();
-        }
-        if (inString)
-        {
-            if (c == '\\')
-                ++i; // an escaped character
-            else if (c == '"')
-                inString = false;
-            continue;
-        }
-        if (c == '"')
-            inString = true;
-        else if (c == '{')
-            ++depth, sawObject = true;
-        else if (c == '}' && --depth < 0)
-            return "a '}' closes no object";
-        if (!std::isspace(static_cast<unsigned char>(c))) last = c;
-    }
-    if (inString) return "the text ends inside a quoted string";
-    if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";
-    if (!sawObject) return "the text holds no object";
-    if (last != '}') return "the text does not end with its last object's '}'";
-    return std::string();
+    return ModelValidation::checkOsgtText(text);
 }
 
 namespace

@@ -6,10 +6,12 @@
 #include <osg/StateSet>
 #include <osg/Texture>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <malloc.h>
 #include <set>
+#include <sstream>
 
 namespace osgLoA
 {
@@ -174,32 +176,48 @@ std::string ModelValidation::checkOsgtStructure(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in) return "cannot be opened";
+    std::ostringstream text;
+    text << in.rdbuf();
+    return checkOsgtText(text.str());
+}
+
+std::string ModelValidation::checkOsgtText(const std::string& text)
+{
+    bool inString = false, sawObject = false;
     long depth = 0;
-    bool inString = false, escaped = false;
-    char buffer[65536];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
-        for (std::streamsize i = 0; i < in.gcount(); ++i)
+    char last = 0;
+    for (std::size_t i = 0; i < text.size(); ++i)
+    {
+        const char c = text[i];
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 && c != '\t' && c != '\n' && c != '\r')
         {
-            const char c = buffer[i];
-            if (inString)
-            {
-                if (escaped)
-                    escaped = false;
-                else if (c == '\\')
-                    escaped = true;
-                else if (c == '"')
-                    inString = false;
-                continue;
-            }
-            if (c == '"')
-                inString = true;
-            else if (c == '{')
-                ++depth;
-            else if (c == '}' && --depth < 0)
-                return "has a '}' that closes no block";
+            // OSG's reader can loop on them too, and no writer puts them in a text file.
+            std::ostringstream s;
+            s << "the text contains the control character 0x" << std::hex << int(u) << " at byte " << std::dec
+              << i;
+            return s.str();
         }
-    if (inString) return "ends inside a quoted string (truncated?)";
-    if (depth > 0) return "ends inside " + std::to_string(depth) + " open blocks (truncated?)";
+        if (inString)
+        {
+            if (c == '\\')
+                ++i; // an escaped character
+            else if (c == '"')
+                inString = false;
+            continue;
+        }
+        if (c == '"')
+            inString = true;
+        else if (c == '{')
+            ++depth, sawObject = true;
+        else if (c == '}' && --depth < 0)
+            return "a '}' closes no object";
+        if (!std::isspace(static_cast<unsigned char>(c))) last = c;
+    }
+    if (inString) return "the text ends inside a quoted string";
+    if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";
+    if (!sawObject) return "the text holds no object";
+    if (last != '}') return "the text does not end with its last object's '}'";
     return std::string();
 }
 

@@ -298,8 +298,8 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
         // OSG 3.6.5's text reader loops forever on a truncated file.
         const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(found);
         if (!problem.empty())
-            throw LoaError{RR::ERROR_IN_READING_FILE,
-                           context + "cannot read model '" + name + "': the OSG text file " + problem};
+            throw LoaError{RR::ERROR_IN_READING_FILE, context + "cannot read model '" + name +
+                                                          "': the OSG text file is incomplete: " + problem};
     }
     RR rr = osgDB::Registry::instance()->readNode(name, options);
     if (rr.validNode())

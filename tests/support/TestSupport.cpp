@@ -12,6 +12,8 @@
 #include <osgDB/Registry>
 #include <osgDB/WriteFile>
 
+#include <gtest/gtest.h>
+
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -82,7 +84,8 @@ osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Imag
     return osgLoA::ImageFile::read(path);
 }
 
-osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance, const osg::Vec4& color)
+osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance,
+                                      const osg::Vec4& color)
 {
     osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
     osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
@@ -186,6 +189,14 @@ osgLoA::FilterImage photoCrop(const std::string& name, int x0, int y0, int w, in
         return out;
     }
     return osgLoA::FilterImage();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to)
+{
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
 }
 
 } // namespace loatest

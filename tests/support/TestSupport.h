@@ -17,6 +17,8 @@ namespace loatest
 
 /** The bytes of a file ("" when it cannot be read). */
 std::string fileBytes(const std::string& path);
+/** text with the first `from` replaced by `to` (a test failure when `from` is missing). */
+std::string replaced(std::string text, const std::string& from, const std::string& to);
 
 /** A w x h crop at (x0, y0) of a skimage photograph (data/cache/python3-skimage, extracted by
  *  scripts/fetch-test-data, or ../shared/data/images), or an empty image when it is missing. */
@@ -40,7 +42,8 @@ osg::ref_ptr<osg::Image> goldenOrUpdate(const std::string& name, const osg::Imag
 
 /** A one-colour quad over x in [x0, x1], y in [-halfHeight, halfHeight] at z = -distance, normal
  *  +z (the A-buffer tests' layers under an orthographic view). */
-osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance, const osg::Vec4& color);
+osg::ref_ptr<osg::Geometry> depthQuad(float x0, float x1, float halfHeight, float distance,
+                                      const osg::Vec4& color);
 
 /** A gtest parameter as a test name: '-' becomes '_' (style names such as "hybrid-toon"). */
 std::string paramName(const std::string& param);
