@@ -342,7 +342,10 @@ TEST_F(LoaPrefilter, UsageAndFailureExitCodes)
         std::string message;
     };
     const std::string m = "'" + model + "'", c = " --cache '" + dir + "/cache'";
+    std::ofstream(dir + "/bare.osgt") << "#Ascii Scene\n#Version 161\n#Generator OpenSceneGraph 3.6.5\n\n"
+                                         "osg::Group {\n  UniqueID 1\n}\n";
     const std::vector<Case> cases = {
+        {"'" + dir + "/bare.osgt' --filter gaussian" + c, 1, "has no 2D texture to filter"},
         {"", 2, "no MODEL given"},
         {m + c, 2, "--filter is required"},
         {m + " --filter gaussian --out '" + dir + "/cache'", 2, "unknown option '--out'"}, // now --cache

@@ -5,6 +5,7 @@
 // which looped forever on it; through the library and through the tools.
 #include "support/TestSupport.h"
 
+#include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Geode>
@@ -165,4 +166,38 @@ TEST(ModelValidationTest, TruncatedTextModelsAreRefusedAtOnce)
             << out;
         EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
     }
+}
+
+// OSG's text reader takes "nan" and "inf" as 0: a scenario's "Near nan" validated as 0 and
+// "FadeIn inf -inf" as 0..0. The structure check refuses non-finite words outside strings.
+TEST(ModelValidationTest, NonFiniteNumbersInTextAreRefused)
+{
+    const std::string text =
+        loatest::fileBytes(std::string(LOA_SOURCE_DIR) + "/data/scenarios/distance.osgt");
+    ASSERT_EQ(ModelValidation::checkOsgtText(text), "");
+    const std::size_t near = text.find("Near ");
+    ASSERT_NE(near, std::string::npos);
+    const std::size_t end = text.find_first_of(" \n", near + 5);
+    std::string bad = text;
+    bad.replace(near + 5, end - (near + 5), "nan");
+    EXPECT_NE(ModelValidation::checkOsgtText(bad).find("a number that is not finite ('nan' at byte"),
+              std::string::npos);
+    const std::string dir = loatest::freshDirectory("ModelValidationNonFinite");
+    std::ofstream(dir + "/near-nan.osgt") << bad;
+    try
+    {
+        osgLoA::ScenarioLibrary::readFile(dir + "/near-nan.osgt");
+        ADD_FAILURE() << "a scenario with Near nan was read";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("not finite ('nan'"), std::string::npos) << e.what();
+    }
+    EXPECT_NE(ModelValidation::checkOsgtText("osg::Group { FadeIn inf -inf }").find("('inf' at byte 20)"),
+              std::string::npos);
+    EXPECT_NE(ModelValidation::checkOsgtText("osg::Group { X -INFINITY }").find("'-INFINITY'"),
+              std::string::npos);
+    // Inside strings the words are names, and words that only start with them are other words.
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"nan inf\" Information 1 nanometre 2 }"),
+              "");
 }

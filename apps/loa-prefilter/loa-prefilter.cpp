@@ -49,9 +49,9 @@ line per image otherwise. Unreadable images (corrupt or missing files, 0x0 image
 reported by name and skipped. The last line counts the images filtered, found in the cache and
 skipped.
 
-exit status: 0 every image filtered or cached, 1 the model could not be read, the cache could
-not be written or the export failed, 2 bad arguments, 3 no usable EGL/OpenGL context (--gpu),
-4 some images were skipped (the others are done).
+exit status: 0 every image filtered or cached, 1 the model could not be read or has no 2D
+texture, the cache could not be written or the export failed, 2 bad arguments, 3 no usable
+EGL/OpenGL context (--gpu), 4 some images were skipped (the others are done).
 )";
 
 constexpr int kSkipped = 4;
@@ -180,6 +180,14 @@ int run(const Options& o)
                 }
         });
     scene->accept(visitor);
+
+    // A model without a 2D texture left (OSG drops textures whose files it cannot read in some
+    // formats) has nothing to filter: that is a failure, not success with nothing done.
+    if (textures.empty())
+        throw std::runtime_error(
+            "'" + o.model + "' has no 2D texture to filter" +
+            (otherTextures ? " (" + std::to_string(otherTextures) + " other textures)" : "") +
+            ": no textured geometry, or its texture files could not be read");
 
     // Distinct images: valid ones by cache key (pixels, wrap modes, filter), sorted by key;
     // unusable ones by name, after them.

@@ -186,9 +186,36 @@ std::string ModelValidation::checkOsgtText(const std::string& text)
     bool inString = false, sawObject = false;
     long depth = 0;
     char last = 0;
+    // A word outside strings that spells a non-finite number: OSG's text reader takes "nan" and
+    // "inf" as 0 (a scenario's "Near nan" validated as 0), so they are refused here.
+    std::size_t wordStart = 0;
+    bool inWord = false;
+    const auto nonFinite = [&](std::size_t end) -> std::string
+    {
+        std::string w = text.substr(wordStart, end - wordStart);
+        for (char& ch : w)
+            ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        if (!w.empty() && (w[0] == '-' || w[0] == '+')) w.erase(0, 1);
+        if (w == "nan" || w == "inf" || w == "infinity" || w.compare(0, 4, "nan(") == 0)
+            return "the text holds a number that is not finite ('" + text.substr(wordStart, end - wordStart) +
+                   "' at byte " + std::to_string(wordStart) + ")";
+        return std::string();
+    };
     for (std::size_t i = 0; i < text.size(); ++i)
     {
         const char c = text[i];
+        if (!inString)
+        {
+            const bool wordChar =
+                !std::isspace(static_cast<unsigned char>(c)) && c != '{' && c != '}' && c != '"';
+            if (wordChar && !inWord) inWord = true, wordStart = i;
+            if (!wordChar && inWord)
+            {
+                inWord = false;
+                const std::string bad = nonFinite(i);
+                if (!bad.empty()) return bad;
+            }
+        }
         const unsigned char u = static_cast<unsigned char>(c);
         if (u < 0x20 && c != '\t' && c != '\n' && c != '\r')
         {
@@ -214,6 +241,7 @@ std::string ModelValidation::checkOsgtText(const std::string& text)
             return "a '}' closes no object";
         if (!std::isspace(static_cast<unsigned char>(c))) last = c;
     }
+    if (inWord && !nonFinite(text.size()).empty()) return nonFinite(text.size());
     if (inString) return "the text ends inside a quoted string";
     if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";
     if (!sawObject) return "the text holds no object";
