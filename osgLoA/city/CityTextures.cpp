@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 namespace osgLoA
@@ -94,7 +97,38 @@ void drawWindow(Canvas& c, int x0, int y0, int cw, int ch, double wFrac, double 
     if (ww > 8) c.rect(wx + ww / 2, wy, wx + ww / 2 + 1, wy + wh, frame);
     c.rect(wx - 2, wy - 3, wx + ww + 2, wy - 1, {frame.r - 30, frame.g - 30, frame.b - 30});
 }
+/** Generated images by key, made once per process; callers get deep copies. */
+osg::ref_ptr<osg::Image> cached(const std::string& key, const std::function<osg::ref_ptr<osg::Image>()>& make)
+{
+    static std::mutex mutex;
+    static std::map<std::string, osg::ref_ptr<osg::Image>> images;
+    osg::ref_ptr<osg::Image> original;
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = images.find(key);
+        if (it != images.end()) original = it->second;
+    }
+    if (!original)
+    {
+        original = make(); // outside the lock: generation is the slow part
+        std::lock_guard<std::mutex> lock(mutex);
+        images.emplace(key, original);
+    }
+    return new osg::Image(*original, osg::CopyOp::DEEP_COPY_ALL);
+}
 } // namespace
+
+osg::ref_ptr<osg::Image> CityTextures::facade(const FacadeStyle& s)
+{
+    return cached("facade|" + s.name + "|" + std::to_string(s.width) + "x" + std::to_string(s.height) + "|" +
+                      std::to_string(s.bays) + "x" + std::to_string(s.floors),
+                  [&] { return generateFacade(s); });
+}
+
+osg::ref_ptr<osg::Image> CityTextures::surface(const std::string& kind)
+{
+    return cached("surface|" + kind, [&] { return generateSurface(kind); });
+}
 
 const std::vector<FacadeStyle>& CityTextures::facadeStyles()
 {
@@ -107,7 +141,7 @@ const std::vector<FacadeStyle>& CityTextures::facadeStyles()
     return styles;
 }
 
-osg::ref_ptr<osg::Image> CityTextures::facade(const FacadeStyle& s)
+osg::ref_ptr<osg::Image> CityTextures::generateFacade(const FacadeStyle& s)
 {
     Canvas c(s.name, s.width, s.height);
     const int cw = s.width / s.bays, ch = s.height / s.floors;
@@ -192,7 +226,7 @@ osg::ref_ptr<osg::Image> CityTextures::facade(const FacadeStyle& s)
     return c.image();
 }
 
-osg::ref_ptr<osg::Image> CityTextures::surface(const std::string& kind)
+osg::ref_ptr<osg::Image> CityTextures::generateSurface(const std::string& kind)
 {
     if (kind == "roof-gravel")
     {
