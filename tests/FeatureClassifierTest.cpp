@@ -25,6 +25,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sys/resource.h>
 
 using namespace osgLoA;
 using R = ClassificationRule;
@@ -886,4 +887,36 @@ TEST(FeatureClassifierTest, CityObjectTypesCoverCityJson2AndAreDocumented)
         if (*e.subType) row += std::string("/") + e.subType;
         EXPECT_NE(doc.find(row + " |"), std::string::npos) << "docs/classification.md lacks: " << row;
     }
+}
+
+// Memory linear in the scene (issue 22 item 3): a chain of 8,000 nested groups, a drawable at
+// each level. One NodePath copy per unit made this O(depth^2): 742 MB; the units now share a
+// path tree. The process's peak resident size must stay far below that.
+TEST(FeatureClassifierTest, DeepChainsTakeLinearMemory)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    osg::Group* at = root.get();
+    for (int i = 0; i < 8000; ++i)
+    {
+        osg::ref_ptr<osg::Geode> g = new osg::Geode;
+        osg::ref_ptr<osg::Geometry> tri = new osg::Geometry;
+        osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+        v->push_back({float(i), 0, 0});
+        v->push_back({float(i) + 1, 0, 0});
+        v->push_back({float(i), 1, 0});
+        tri->setVertexArray(v.get());
+        tri->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
+        g->addDrawable(tri.get());
+        at->addChild(g.get());
+        osg::ref_ptr<osg::Group> next = new osg::Group;
+        at->addChild(next.get());
+        at = next.get();
+    }
+    struct rusage before;
+    ::getrusage(RUSAGE_SELF, &before);
+    const osgLoA::FeatureClassifier::Report r = osgLoA::FeatureClassifier().classify(*root);
+    struct rusage after;
+    ::getrusage(RUSAGE_SELF, &after);
+    EXPECT_EQ(r.units, 8000u);
+    EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 150L * 1024) << "kB grown by the classification";
 }

@@ -264,9 +264,9 @@ void AbstractionNode::build()
 
     _unshadedState = new osg::StateSet;
     _unshadedState->setAttributeAndModes(
-        ShaderLibrary::createProgram("loa_abstraction_unshaded", {"loa_abstraction_object.vert.glsl",
-                                                                  "loa_material_alpha.frag.glsl",
-                                                                  "loa_abstraction_unshaded.frag.glsl"})
+        ShaderLibrary::createProgram("loa_abstraction_unshaded",
+                                     {"loa_abstraction_object.vert.glsl", "loa_material_alpha.frag.glsl",
+                                      "loa_abstraction_unshaded.frag.glsl"})
             .get(),
         kForce);
     _unshadedState->addUniform(new osg::Uniform("loa_baseTexture", 0));
@@ -446,8 +446,8 @@ void AbstractionNode::configure()
         << int(s.getAdaptivity()) << ' ' << s.getSegmentation() << s.getSilhouettes() << ' '
         << s.getPencilLevels() << ' ' << s.getPencilAnisotropy() << ' ' << s.getKuwaharaRadius() << ' '
         << s.getKuwaharaIterations() << ' ' << s.getKuwaharaIterationsFocus() << ' ' << int(s.getEdgeSource())
-        << ' ' << s.getDogSigma() << ' ' << s.getDogRatio() << ' ' << s.getDogTau() << ' ' << s.getDogEpsilon() << ' ' << s.getCannyLow()
-        << ' ' << s.getCannyHigh();
+        << ' ' << s.getDogSigma() << ' ' << s.getDogRatio() << ' ' << s.getDogTau() << ' '
+        << s.getDogEpsilon() << ' ' << s.getCannyLow() << ' ' << s.getCannyHigh();
     if (key.str() == _configuredKey) return;
     _configuredKey = key.str();
 
@@ -715,7 +715,7 @@ void AbstractionNode::collectObjects()
         {
             osg::ref_ptr<osg::Node> node;
             if (!e.node.lock(node)) continue;
-            const osg::Vec3d centre = osg::Vec3d(node->getBound().center()) * parentMatrix(e.path);
+            const osg::Vec3d centre = osg::Vec3d(node->getBound().center()) * parentMatrix(index.pathOf(e));
             osg::StateSet* ss = nullptr;
             if (osg::Drawable* d = node->asDrawable())
                 ss = ownStateSet(*d);

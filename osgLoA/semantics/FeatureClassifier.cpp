@@ -177,22 +177,32 @@ FeatureClassifier::FeatureClassifier(ClassificationRuleSet* rules)
     setNodeMaskOverride(~0u);
 }
 
+osg::NodePath FeatureClassifier::pathOf(const Unit& u) const
+{
+    osg::NodePath path;
+    for (long e = u.pathEnd; e >= 0; e = _pathTree[static_cast<std::size_t>(e)].second)
+        path.push_back(_pathTree[static_cast<std::size_t>(e)].first);
+    std::reverse(path.begin(), path.end());
+    return path;
+}
+
 void FeatureClassifier::apply(osg::Node& node)
 {
+    const long entry = static_cast<long>(_pathTree.size());
+    _pathTree.emplace_back(&node, _pathStack.empty() ? -1L : _pathStack.back());
+    _pathStack.push_back(entry);
     if (Feature* f = Feature::get(node))
     {
-        _units.push_back({&node, getNodePath(), f, false});
+        _units.push_back({&node, entry, f, false});
         ++_insideFeature;
         traverse(node);
         --_insideFeature;
-        return;
     }
-    if (_insideFeature == 0 && node.asDrawable())
-    {
-        _units.push_back({&node, getNodePath(), nullptr, false});
-        return;
-    }
-    traverse(node);
+    else if (_insideFeature == 0 && node.asDrawable())
+        _units.push_back({&node, entry, nullptr, false});
+    else
+        traverse(node);
+    _pathStack.pop_back();
 }
 
 int FeatureClassifier::matchLevel(const std::vector<const osg::Node*>& nodes, bool ancestor,
@@ -219,6 +229,8 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
     Report report;
     report.perRule.assign(_rules->getRules().size(), 0);
     _units.clear();
+    _pathTree.clear();
+    _pathStack.clear();
     _insideFeature = 0;
     root.accept(*this);
     report.units = static_cast<unsigned>(_units.size());
@@ -262,14 +274,15 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
         // drawable's name and state as often as the drawable does).
         SubtreeNodes sub;
         u.node->accept(sub);
-        std::size_t firstAncestor = u.path.size() - 1;
-        if (u.node->asDrawable() && firstAncestor > 0 && u.path[firstAncestor - 1]->asGeode())
-            sub.nodes.push_back(u.path[--firstAncestor]);
+        const osg::NodePath path = pathOf(u);
+        std::size_t firstAncestor = path.size() - 1;
+        if (u.node->asDrawable() && firstAncestor > 0 && path[firstAncestor - 1]->asGeode())
+            sub.nodes.push_back(path[--firstAncestor]);
         int match = matchLevel(sub.nodes, false, overridingOnly);
         for (std::size_t k = firstAncestor; match < 0 && k-- > 0;)
         {
-            if (isFileLevel(u.path, k)) continue;
-            const osg::Node* a = u.path[k];
+            if (isFileLevel(path, k)) continue;
+            const osg::Node* a = path[k];
             const auto key = std::make_pair(a, overridingOnly);
             auto it = ancestorMatch.find(key);
             if (it == ancestorMatch.end())
@@ -308,6 +321,8 @@ FeatureClassifier::Report FeatureClassifier::classify(osg::Node& root)
     }
     index.updateBounds();
     _units.clear();
+    _pathTree.clear();
+    _pathTree.shrink_to_fit();
     return report;
 }
 
@@ -324,7 +339,7 @@ void FeatureClassifier::classifyByAppearance(Report& report)
     if (!anyUnknown) return;
     for (std::size_t i = 0; i < _units.size(); ++i)
     {
-        Appearance a = Appearance::of(*_units[i].node, _units[i].path);
+        Appearance a = Appearance::of(*_units[i].node, pathOf(_units[i]));
         if (!a.valid()) continue;
         std::string key = a.textureKey;
         if (key.empty())
@@ -467,11 +482,12 @@ void FeatureClassifier::attachObjectFeatures(Report& report)
     auto transformObjectOf = [&](const Unit& u) -> osg::Node*
     {
         if (!_rules->getGroupObjects()) return nullptr;
-        for (std::size_t k = u.path.size() - 1; k-- > 0;)
+        const osg::NodePath path = pathOf(u);
+        for (std::size_t k = path.size() - 1; k-- > 0;)
         {
-            osg::Transform* t = u.path[k]->asTransform();
+            osg::Transform* t = path[k]->asTransform();
             if (!t) continue;
-            if (isFileLevel(u.path, k)) return nullptr; // the scene or a file is no object
+            if (isFileLevel(path, k)) return nullptr; // the scene or a file is no object
             auto it = geometryOnly.find(t);
             if (it == geometryOnly.end())
             {
@@ -484,9 +500,11 @@ void FeatureClassifier::attachObjectFeatures(Report& report)
         }
         return nullptr;
     };
-    auto geodeOf = [](const Unit& u) -> osg::Geode*
+    auto geodeOf = [this](const Unit& u) -> osg::Geode*
     {
-        osg::Geode* g = u.path.size() >= 2 ? u.path[u.path.size() - 2]->asGeode() : nullptr;
+        // The parent entry of the unit's node.
+        const long parent = u.pathEnd >= 0 ? _pathTree[static_cast<std::size_t>(u.pathEnd)].second : -1;
+        osg::Geode* g = parent >= 0 ? _pathTree[static_cast<std::size_t>(parent)].first->asGeode() : nullptr;
         return g && !Feature::get(*g) ? g : nullptr;
     };
 
@@ -536,9 +554,9 @@ void FeatureClassifier::attachObjectFeatures(Report& report)
                 continue;
             osg::BoundingBoxd box;
             for (std::size_t i : groups[g])
-                box.expandBy(worldBox(*_units[i].node, _units[i].path));
+                box.expandBy(worldBox(*_units[i].node, pathOf(_units[i])));
             if (box.valid())
-                byType[std::make_pair(type, lookOf(*first.node, first.path))].push_back({box, g});
+                byType[std::make_pair(type, lookOf(*first.node, pathOf(first)))].push_back({box, g});
         }
         for (auto& kv : byType)
         {
@@ -569,8 +587,11 @@ void FeatureClassifier::attachObjectFeatures(Report& report)
     //    drawable (one Feature then sits on several nodes; FeatureIndex counts it once).
     std::map<const osg::Node*, std::size_t> unitsBelow; // units (any) under each Geode/transform
     for (const Unit& u : _units)
-        for (std::size_t k = 0; k + 1 < u.path.size(); ++k)
-            if (isCarrierNode(u.path[k])) ++unitsBelow[u.path[k]];
+    {
+        const osg::NodePath path = pathOf(u);
+        for (std::size_t k = 0; k + 1 < path.size(); ++k)
+            if (isCarrierNode(path[k])) ++unitsBelow[path[k]];
+    }
     for (const auto& kv : objects)
     {
         const std::vector<std::size_t>& members = kv.second;
@@ -593,9 +614,12 @@ void FeatureClassifier::attachObjectFeatures(Report& report)
 
         std::map<const osg::Node*, std::size_t> count; // members under each Geode/transform
         for (std::size_t i : members)
-            for (std::size_t k = 0; k + 1 < _units[i].path.size(); ++k)
-                if (isCarrierNode(_units[i].path[k])) ++count[_units[i].path[k]];
-        const osg::NodePath& first = _units[members.front()].path;
+        {
+            const osg::NodePath path = pathOf(_units[i]);
+            for (std::size_t k = 0; k + 1 < path.size(); ++k)
+                if (isCarrierNode(path[k])) ++count[path[k]];
+        }
+        const osg::NodePath first = pathOf(_units[members.front()]);
         osg::Node* whole = nullptr;
         for (std::size_t k = 1; k + 1 < first.size() && !whole; ++k)
             if (isCarrierNode(first[k]) && count[first[k]] == members.size() &&

@@ -16,40 +16,57 @@ namespace
 class CollectFeatures : public osg::NodeVisitor
 {
 public:
-    explicit CollectFeatures(std::vector<FeatureIndex::Entry>& out)
-        : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), _out(out)
+    CollectFeatures(std::vector<FeatureIndex::Entry>& out, std::vector<std::pair<osg::Node*, long>>& tree)
+        : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), _out(out), _tree(tree)
     {
         setNodeMaskOverride(~0u);
     }
 
     void apply(osg::Node& node) override
     {
+        const long place = static_cast<long>(_tree.size());
+        _tree.emplace_back(&node, _places.empty() ? -1L : _places.back());
+        _places.push_back(place);
         Feature* f = Feature::get(node);
         if (f)
         {
             FeatureIndex::Entry e;
             e.feature = f;
             e.node = &node;
-            e.path = getNodePath();
+            e.pathEnd = place;
             e.parent = _stack.empty() ? -1 : _stack.back();
             _stack.push_back(static_cast<int>(_out.size()));
             _out.push_back(e);
         }
         traverse(node);
         if (f) _stack.pop_back();
+        _places.pop_back();
     }
 
 private:
     std::vector<FeatureIndex::Entry>& _out;
+    std::vector<std::pair<osg::Node*, long>>& _tree;
     std::vector<int> _stack;
+    std::vector<long> _places;
 };
 } // namespace
 
 void FeatureIndex::build(osg::Node& root)
 {
     _entries.clear();
-    CollectFeatures c(_entries);
+    _pathTree.clear();
+    CollectFeatures c(_entries, _pathTree);
     root.accept(c);
+}
+
+osg::NodePath FeatureIndex::pathOf(const Entry& entry) const
+{
+    osg::NodePath path;
+    for (long p = entry.pathEnd; p >= 0 && static_cast<std::size_t>(p) < _pathTree.size();
+         p = _pathTree[static_cast<std::size_t>(p)].second)
+        path.push_back(_pathTree[static_cast<std::size_t>(p)].first);
+    std::reverse(path.begin(), path.end());
+    return path;
 }
 
 const FeatureIndex::Entry* FeatureIndex::find(unsigned id) const
@@ -94,7 +111,8 @@ void FeatureIndex::updateBounds()
     {
         osg::ref_ptr<osg::Node> node;
         if (!e.node.lock(node)) continue;
-        osg::NodePath parentPath(e.path.begin(), e.path.end() - 1);
+        osg::NodePath parentPath = pathOf(e);
+        if (!parentPath.empty()) parentPath.pop_back();
         osg::ComputeBoundsVisitor cbv;
         cbv.setNodeMaskOverride(~0u);
         osg::Matrix toWorld = osg::computeLocalToWorld(parentPath);

@@ -433,7 +433,7 @@ unsigned ViewpointEntropy::computeBestViews(FeatureIndex& index, std::vector<Res
         osg::ref_ptr<osg::Node> node;
         Result r;
         if (e.node.lock(node))
-            r = evaluate(*node, e.path);
+            r = evaluate(*node, index.pathOf(e));
         else
             r.message = "the feature's node no longer exists";
         r.featureId = f.getId();

@@ -433,13 +433,21 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
 void TransitionRenderer::installCallbacks(const FeatureIndex& index)
 {
     _nested.assign(index.size(), {});
-    _paths.assign(index.size(), {});
+    _between.assign(index.size(), {});
     _hasUnfeatured = false;
     for (unsigned e = 0; e < index.size(); ++e)
     {
         const FeatureIndex::Entry& entry = index.entries()[e];
-        _paths[e] = entry.path;
-        if (entry.parent >= 0) _nested[unsigned(entry.parent)].push_back(e);
+        if (entry.parent >= 0)
+        {
+            _nested[unsigned(entry.parent)].push_back(e);
+            // Only the nodes between the enclosing feature's node and this one (a whole path
+            // per entry took memory quadratic in the scene's depth).
+            const osg::NodePath outer = index.pathOf(index.entries()[unsigned(entry.parent)]);
+            const osg::NodePath inner = index.pathOf(entry);
+            if (inner.size() > outer.size())
+                _between[e].assign(inner.begin() + static_cast<long>(outer.size()), inner.end());
+        }
         osg::Node* node = entry.node.get();
         if (!node) continue;
         osg::ref_ptr<osg::Callback> cb;
@@ -658,13 +666,12 @@ void TransitionRenderer::visitNested(unsigned entry, osgUtil::CullVisitor& cv)
     {
         // Walk the path from this feature's node to the nested one, applying the transforms and
         // state sets between them as the cull traversal would.
-        const osg::NodePath& outer = _paths[entry];
-        const osg::NodePath& inner = _paths[child];
-        if (inner.size() <= outer.size()) continue;
+        const osg::NodePath& between = _between[child];
+        if (between.empty()) continue;
         unsigned pushedMatrices = 0, pushedStates = 0;
-        for (std::size_t k = outer.size(); k + 1 < inner.size(); ++k)
+        for (std::size_t k = 0; k + 1 < between.size(); ++k)
         {
-            osg::Node* n = inner[k];
+            osg::Node* n = between[k];
             if (osg::Transform* t = n->asTransform())
             {
                 osg::ref_ptr<osg::RefMatrix> m = new osg::RefMatrix(*cv.getModelViewMatrix());
@@ -678,7 +685,7 @@ void TransitionRenderer::visitNested(unsigned entry, osgUtil::CullVisitor& cv)
                 ++pushedStates;
             }
         }
-        inner.back()->accept(cv);
+        between.back()->accept(cv);
         for (unsigned k = 0; k < pushedStates; ++k)
             cv.popStateSet();
         for (unsigned k = 0; k < pushedMatrices; ++k)
