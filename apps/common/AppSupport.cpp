@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <unistd.h>
 
@@ -79,6 +80,14 @@ int runTool(const char* tool, const std::function<int()>& body)
     {
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kUsage;
+    }
+    catch (const std::bad_alloc&)
+    {
+        // A bare "std::bad_alloc" named nothing: say what it means and where the limits are.
+        std::cerr << tool
+                  << ": error: out of memory: an input is larger than this machine can hold, or states sizes "
+                     "it does not have (reader limits: docs/reliability.md)\n";
+        return kFailure;
     }
     catch (const std::exception& e)
     {
