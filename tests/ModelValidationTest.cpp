@@ -201,3 +201,28 @@ TEST(ModelValidationTest, NonFiniteNumbersInTextAreRefused)
     EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"nan inf\" Information 1 nanometre 2 }"),
               "");
 }
+
+// Third-party chatter is collapsed (issue 22 item 3): OSG warns once per unknown object, and a
+// model of 50 of them printed 50 identical lines; a tool shows a repeated line twice, then counts.
+TEST(ModelValidationTest, RepeatedNoticesAreCounted)
+{
+    const std::string dir = loatest::freshDirectory("ModelValidationRepeats");
+    std::string children;
+    for (int i = 0; i < 50; ++i)
+        children += "    osgFoo::Bar {\n      UniqueID " + std::to_string(i + 2) + "\n    }\n";
+    std::ofstream(dir + "/unknown.osgt") << "#Ascii Scene\n#Version 161\n#Generator OpenSceneGraph 3.6.5\n\n"
+                                            "osg::Group {\n  UniqueID 1\n  Children 50 {\n"
+                                         << children << "  }\n}\n";
+    std::string out;
+    EXPECT_EQ(loatest::run("OSG_NOTIFY_LEVEL=WARN '" + std::string(LOA_CLASSIFY_EXE) + "' '" + dir +
+                               "/unknown.osgt' --json",
+                           out),
+              0)
+        << out;
+    std::size_t lines = 0;
+    for (std::size_t at = out.find("Unsupported wrapper class osgFoo::Bar"); at != std::string::npos;
+         at = out.find("Unsupported wrapper class osgFoo::Bar", at + 1))
+        ++lines;
+    EXPECT_EQ(lines, 2u) << out;
+    EXPECT_NE(out.find("(the line above 48 more times)"), std::string::npos) << out;
+}

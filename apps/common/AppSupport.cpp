@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <mutex>
 #include <new>
 #include <sstream>
 #include <unistd.h>
@@ -45,45 +46,104 @@ void findPlugins()
 namespace
 {
 /** OSG's standard handler writes NOTICE and INFO to stdout: a tool that writes data there
- *  (JSON, PPM, a scenario) would get diagnostics inside it. Every level goes to stderr. */
+ *  (JSON, PPM, a scenario) would get diagnostics inside it. Every level goes to stderr, and a
+ *  message repeated line after line is shown twice, then counted (OSG's text reader once wrote
+ *  43,019 identical "InputIterator::checkStream()" lines before one error). */
 class StderrNotifyHandler : public osg::NotifyHandler
 {
 public:
-    void notify(osg::NotifySeverity, const char* message) override { std::fputs(message, stderr); }
+    void notify(osg::NotifySeverity, const char* message) override
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        if (_last == message)
+        {
+            if (++_repeats <= 1) std::fputs(message, stderr);
+            return;
+        }
+        flushLocked();
+        _last = message;
+        std::fputs(message, stderr);
+    }
+    void flush()
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        flushLocked();
+    }
+
+private:
+    void flushLocked()
+    {
+        if (_repeats > 1) std::fprintf(stderr, "  (the line above %lu more times)\n", _repeats - 1);
+        _repeats = 0;
+        _last.clear();
+    }
+    std::mutex _mutex;
+    std::string _last;
+    unsigned long _repeats = 0;
 };
+
+osg::ref_ptr<StderrNotifyHandler>& stderrHandler()
+{
+    static osg::ref_ptr<StderrNotifyHandler> handler;
+    return handler;
+}
 } // namespace
+
+void flushNotices()
+{
+    if (stderrHandler().valid()) stderrHandler()->flush();
+}
 
 void notifyToStderr()
 {
-    osg::setNotifyHandler(new StderrNotifyHandler);
+    stderrHandler() = new StderrNotifyHandler;
+    osg::setNotifyHandler(stderrHandler().get());
+}
+
+namespace
+{
+int runBody(const char* tool, const std::function<int()>& body);
 }
 
 int runTool(const char* tool, const std::function<int()>& body)
 {
     notifyToStderr();
     findPlugins();
+    const int status = runBody(tool, body);
+    flushNotices();
+    return status;
+}
+
+namespace
+{
+int runBody(const char* tool, const std::function<int()>& body)
+{
     try
     {
         return body();
     }
     catch (const UsageError& e)
     {
+        flushNotices(); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kUsage;
     }
     catch (const osgLoA::HeadlessContextError& e)
     {
+        flushNotices(); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kNoContext;
     }
     catch (const std::invalid_argument& e)
     {
+        flushNotices(); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kUsage;
     }
     catch (const std::bad_alloc&)
     {
         // A bare "std::bad_alloc" named nothing: say what it means and where the limits are.
+        flushNotices(); // counted repeats before the error line
         std::cerr << tool
                   << ": error: out of memory: an input is larger than this machine can hold, or states sizes "
                      "it does not have (reader limits: docs/reliability.md)\n";
@@ -91,10 +151,12 @@ int runTool(const char* tool, const std::function<int()>& body)
     }
     catch (const std::exception& e)
     {
+        flushNotices(); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kFailure;
     }
 }
+} // namespace
 
 int runTool(const char* tool, const std::function<void()>& parse, const std::function<int()>& work)
 {

@@ -38,8 +38,11 @@ enum ExitCode
  *  osgDB's library path: the build tree's lib/ and the install prefix's libdir, where they
  *  exist. runTool calls it first, so no tool needs OSG_LIBRARY_PATH. */
 void findPlugins();
-/** Sends every OSG notification to stderr (stdout carries the tools' data); runTool calls it. */
+/** Sends every OSG notification to stderr (stdout carries the tools' data), a message repeated
+ *  line after line shown twice and then counted; runTool calls it. */
 void notifyToStderr();
+/** Prints the count of a repeated notification still pending (runTool does at the end). */
+void flushNotices();
 
 /** Runs a tool's body and maps exceptions to one line "<tool>: error: <what>" on stderr and
  *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,
