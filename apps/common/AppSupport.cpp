@@ -402,15 +402,20 @@ osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const 
     }
     return scene;
 }
+std::string modelLabel(const std::vector<std::string>& models)
+{
+    std::string label;
+    for (const std::string& m : models)
+        label += (label.empty() ? "" : " + ") + m;
+    return label;
+}
+
 osg::ref_ptr<osg::Node> loadModelsOrDemoCity(const std::vector<std::string>& paths,
                                              const std::string& readerOptions, std::string& what)
 {
     if (!paths.empty())
     {
-        std::string label;
-        for (const std::string& p : paths)
-            label += (label.empty() ? "" : " + ") + p;
-        what = "'" + label + "'";
+        what = "'" + modelLabel(paths) + "'";
         return loadModels(paths, readerOptions);
     }
     osgLoA::CityParameters params;

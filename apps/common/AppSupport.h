@@ -71,6 +71,9 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path, const std::string& re
 osg::ref_ptr<osg::Node> loadModels(const std::vector<std::string>& paths, const std::string& readerOptions,
                                    bool keepImageNames = false);
 
+/** The models as one label: "a.osgb + b.osgb" ("" for none). */
+std::string modelLabel(const std::vector<std::string>& models);
+
 /** loadModels, or without models the demo city generated from readerOptions (CityParameters
  *  syntax; a bad parameter is a UsageError). what: "'a.osgb + b.osgb'" or "the demo city (seed
  *  S, WxH blocks)", for messages. */

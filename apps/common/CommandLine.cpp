@@ -326,14 +326,6 @@ void addListFilters(CLI::App& app, const std::string& description)
         ->trigger_on_parse();
 }
 
-std::string modelLabel(const std::vector<std::string>& models)
-{
-    std::string label;
-    for (const std::string& m : models)
-        label += (label.empty() ? "" : " + ") + m;
-    return label;
-}
-
 void addReaderOptions(CLI::App& app, std::string& readerOptions)
 {
     app.add_option_function<std::vector<std::string>>(

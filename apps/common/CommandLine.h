@@ -83,9 +83,6 @@ CLI::Option* addCount(CLI::App& app, const std::string& name, unsigned& value, u
 /** --list-filters: prints every registered image filter with its description and exits 0. */
 void addListFilters(CLI::App& app, const std::string& description);
 
-/** The models as one label: "a.osgb + b.osgb" ("" for none). */
-std::string modelLabel(const std::vector<std::string>& models);
-
 /** Group headings. */
 extern const char* const kGroupModel;
 extern const char* const kGroupCamera;

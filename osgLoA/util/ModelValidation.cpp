@@ -241,7 +241,11 @@ std::string ModelValidation::checkOsgtText(const std::string& text)
             return "a '}' closes no object";
         if (!std::isspace(static_cast<unsigned char>(c))) last = c;
     }
-    if (inWord && !nonFinite(text.size()).empty()) return nonFinite(text.size());
+    if (inWord)
+    {
+        const std::string bad = nonFinite(text.size());
+        if (!bad.empty()) return bad;
+    }
     if (inString) return "the text ends inside a quoted string";
     if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";
     if (!sawObject) return "the text holds no object";

@@ -68,7 +68,6 @@ PolygonCrossings PolygonCrossings::count(const std::vector<std::vector<osg::Vec2
     const auto cellY = [&](double y)
     { return std::min(side - 1, static_cast<std::size_t>(std::max(0.0, (y - minY) / ch))); };
     std::vector<std::vector<std::size_t>> cells(side * side);
-    std::size_t registrations = 0;
     for (std::size_t k = 0; k < edges.size(); ++k)
     {
         // Amanatides & Woo: the cells the segment passes, from a's to b's.
@@ -86,7 +85,6 @@ PolygonCrossings PolygonCrossings::count(const std::vector<std::vector<osg::Vec2
         for (std::size_t guard = 0; guard < 4 * side + 4; ++guard)
         {
             cells[y * side + x].push_back(k);
-            ++registrations;
             if (x == xEnd && y == yEnd) break;
             if (tMaxX < tMaxY)
             {
@@ -100,7 +98,6 @@ PolygonCrossings PolygonCrossings::count(const std::vector<std::vector<osg::Vec2
             }
         }
     }
-    (void)registrations;
 
     for (std::size_t c = 0; c < cells.size(); ++c)
     {
