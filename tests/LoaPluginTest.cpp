@@ -108,7 +108,9 @@ std::string quote(const std::string& s)
 std::string osgconv(const std::string& args, int& rc)
 {
     std::string out;
-    rc = loatest::run("env OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) + "/lib' osgconv " + args, out);
+    rc = loatest::run("env " + loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
+                          "/lib' osgconv " + args,
+                      out);
     return out;
 }
 

@@ -61,7 +61,7 @@ void view(const std::string& what, const std::string& optionString, const std::s
     {
         const unsigned display = 100 + (static_cast<unsigned>(::getpid()) * 37u + runs++ * 11u) % 800u;
         command = "xvfb-run -n " + std::to_string(display) + " -a" +
-                  " -s '-screen 0 640x480x24' env OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
+                  " -s '-screen 0 640x480x24' env " + loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
                   "/lib' OSG_RUN_FRAME_COUNT=3 OSG_NOTIFY_LEVEL=WARN osgviewer --window 0 0 320 240" +
                   (optionString.empty() ? std::string() : " -O '" + optionString + "'") + " '" + file + "'";
         rc = loatest::run(command, output);

@@ -65,7 +65,7 @@ TEST(ReadmeCommandsGLTest, EveryToolCommandOfTheReadmeRuns)
     std::string pluginDir;
     ASSERT_EQ(loatest::run("cd '" + dir + "/prefix' && ls -d lib*/osgPlugins-*", pluginDir), 0) << pluginDir;
     const std::string stockEnv =
-        "OSG_LIBRARY_PATH='" + dir + "/prefix/" + pluginDir.substr(0, pluginDir.find("/osgPlugins-")) + "' ";
+        loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + dir + "/prefix/" + pluginDir.substr(0, pluginDir.find("/osgPlugins-")) + "' ";
     std::vector<std::pair<std::string, std::string>> failed;
     for (int pass = 0; pass < 2; ++pass)
     {

@@ -692,15 +692,15 @@ TEST(ScenarioSerializationTest, MalformedValuesInTextFilesNameTheProblem)
         expectErrorSaying(path, c.problem);
     }
     // Counts under the limits but above the lists' lengths: the read stops at the first entry
-    // that is not there (an error, quickly), not after the count. (OSG's text reader takes any
-    // word for a number, "}" for 0, so a vertex count only a little too large reads the words
-    // after the list as vertices: not harmful, and not checked here.)
+    // that is not there, or at the end of the text (BoundedObjectReader), quickly, not after the
+    // count. (OSG's text reader takes any word for a number, "}" for 0, so a count only a little
+    // too large reads the words after the list as entries until the text ends.)
     writeBytes(dir + "/count-plus-one.osgt", replaced(text, "Configurations 4 {", "Configurations 5 {"));
-    expectErrorSaying(dir + "/count-plus-one.osgt", "cannot read scenario file");
+    expectErrorSaying(dir + "/count-plus-one.osgt", "the text ends before its objects do");
     writeBytes(dir + "/count-at-limit.osgt", replaced(text, "Configurations 4 {", "Configurations 65536 {"));
-    expectErrorSaying(dir + "/count-at-limit.osgt", "cannot read scenario file");
+    expectErrorSaying(dir + "/count-at-limit.osgt", "the text ends before its objects do");
     writeBytes(dir + "/vertices-at-limit.osgt", replaced(text, "Vertices 6 {", "Vertices 1048576 {"));
-    expectErrorSaying(dir + "/vertices-at-limit.osgt", "cannot read scenario file");
+    expectErrorSaying(dir + "/vertices-at-limit.osgt", "the text ends before its objects do");
 
     // The same checks read .osgx.
     ScenarioLibrary::writeFile(*absoluteRoute(), dir + "/route.osgx");
@@ -778,9 +778,9 @@ TEST(ScenarioSerializationTest, MalformedValuesInBinaryFilesNameTheProblem)
         expectErrorSaying(patchedPath, c.problem);
     }
     // One configuration more than the file holds: the read fails at the first entry that is not
-    // one (the bytes after the list), quickly.
+    // one (the bytes after the list, read as a block size far past the end), quickly.
     writeBytes(dir + "/count-plus-one.osgb", patched(binary, countAt, std::uint32_t(5)));
-    expectErrorSaying(dir + "/count-plus-one.osgb", "cannot read scenario file");
+    expectErrorSaying(dir + "/count-plus-one.osgb", "left in the data");
 }
 
 // --- ScenarioLibrary ------------------------------------------------------------------------

@@ -3,6 +3,7 @@
 #include <osgLoA/Version>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/util/BoundedObjectReader>
 #include <osgLoA/util/ModelValidation>
 
 #include <osgDB/FileNameUtils>
@@ -255,26 +256,35 @@ osg::ref_ptr<osg::Node> loadModel(const std::string& path)
     osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension(ext);
     if (!rw)
         throw std::runtime_error("cannot read '" + path + "': no osgDB plugin reads '." + ext + "' files");
-    // OSG 3.6.5's text reader loops forever on a truncated file: its structure is checked first.
-    if (ext == "osgt")
+    osg::ref_ptr<osg::Node> node;
+    if (osgLoA::BoundedObjectReader::handlesExtension(ext))
     {
-        const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(path);
-        if (!problem.empty())
-            throw std::runtime_error("cannot read '" + path +
-                                     "': the OSG text file is incomplete: " + problem);
+        // OSG's own .osgt/.osgb readers loop forever on a truncated or bit-flipped file and
+        // trust the sizes it states: read with the work bounded by the file's size instead.
+        try
+        {
+            node = osgLoA::BoundedObjectReader::readNodeFile(path, osgDB::Registry::instance()->getOptions());
+        }
+        catch (const osgLoA::MalformedFileError& e)
+        {
+            throw std::runtime_error("cannot read '" + path + "': " + e.what());
+        }
     }
-    osgDB::ReaderWriter::ReadResult rr = rw->readNode(path, osgDB::Registry::instance()->getOptions());
-    if (!rr.validNode())
+    else
     {
-        std::string why = rr.message();
-        if (why.empty())
-            why = rr.status() == osgDB::ReaderWriter::ReadResult::FILE_NOT_HANDLED
-                      ? "the '" + ext + "' plugin does not handle it"
-                      : "the file is malformed or holds no scene";
-        throw std::runtime_error("cannot read '" + path + "': " + why);
+        osgDB::ReaderWriter::ReadResult rr = rw->readNode(path, osgDB::Registry::instance()->getOptions());
+        if (!rr.validNode())
+        {
+            std::string why = rr.message();
+            if (why.empty())
+                why = rr.status() == osgDB::ReaderWriter::ReadResult::FILE_NOT_HANDLED
+                          ? "the '" + ext + "' plugin does not handle it"
+                          : "the file is malformed or holds no scene";
+            throw std::runtime_error("cannot read '" + path + "': " + why);
+        }
+        node = rr.getNode();
     }
     // Indices past their arrays, images that state more than they hold: dropped with warnings.
-    osg::ref_ptr<osg::Node> node = rr.getNode();
     osgLoA::ModelValidation::validate(*node, path);
     return node;
 }

@@ -1,8 +1,12 @@
 #include <osgLoA/semantics/CityObjectTypes>
 #include <osgLoA/semantics/ClassificationRuleSet>
 #include <osgLoA/util/AtomicFile>
+#include <osgLoA/util/BoundedObjectReader>
 
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
+#include <osgDB/Registry>
 #include <osgDB/WriteFile>
 
 #include <cmath>
@@ -223,14 +227,54 @@ osg::ref_ptr<ClassificationRuleSet> ClassificationRuleSet::assemble(const std::v
 
 osg::ref_ptr<ClassificationRuleSet> ClassificationRuleSet::read(const std::string& path)
 {
-    osgDB::ReaderWriter::ReadResult rr = osgDB::Registry::instance()->readObject(path, nullptr);
-    if (!rr.validObject())
-        throw std::runtime_error(
-            "cannot read rule set '" + path + "'" +
-            (rr.message().empty() ? std::string(": no reader or file not found") : ": " + rr.message()));
-    osg::ref_ptr<ClassificationRuleSet> set = dynamic_cast<ClassificationRuleSet*>(rr.getObject());
+    const std::string ext = osgDB::getLowerCaseFileExtension(path);
+    osg::ref_ptr<osg::Object> object;
+    if (BoundedObjectReader::handlesExtension(ext))
+    {
+        // .osgt and .osgb: read with the work bounded by the file's size (OSG's own readers loop
+        // forever on a truncated file and trust the sizes a bit-flipped one states).
+        if (osgDB::findDataFile(path).empty())
+            throw std::runtime_error("cannot read rule set '" + path + "': file not found");
+        try
+        {
+            object = BoundedObjectReader::readObjectFile(osgDB::findDataFile(path), nullptr);
+        }
+        catch (const MalformedFileError& e)
+        {
+            throw std::runtime_error("cannot read rule set '" + path + "': " + e.what());
+        }
+    }
+    else
+    {
+        osgDB::ReaderWriter::ReadResult rr = osgDB::Registry::instance()->readObject(path, nullptr);
+        if (!rr.validObject())
+            throw std::runtime_error(
+                "cannot read rule set '" + path + "'" +
+                (rr.message().empty() ? std::string(": no reader or file not found") : ": " + rr.message()));
+        object = rr.getObject();
+    }
+    return checked(object.get(), path);
+}
+
+osg::ref_ptr<ClassificationRuleSet> ClassificationRuleSet::readData(const std::string& data, const std::string& label)
+{
+    osg::ref_ptr<osg::Object> object;
+    try
+    {
+        object = BoundedObjectReader::readCheckedObject(data, nullptr);
+    }
+    catch (const MalformedFileError& e)
+    {
+        throw std::runtime_error("cannot read rule set '" + label + "': " + e.what());
+    }
+    return checked(object.get(), label);
+}
+
+osg::ref_ptr<ClassificationRuleSet> ClassificationRuleSet::checked(osg::Object* object, const std::string& label)
+{
+    osg::ref_ptr<ClassificationRuleSet> set = dynamic_cast<ClassificationRuleSet*>(object);
     if (!set)
-        throw std::runtime_error("'" + path + "' holds a " + std::string(rr.getObject()->className()) +
+        throw std::runtime_error("'" + label + "' holds a " + std::string(object ? object->className() : "nothing") +
                                  ", not an osgLoA::ClassificationRuleSet");
     set->validate();
     return set;

@@ -3,6 +3,7 @@
 
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/util/AtomicFile>
+#include <osgLoA/util/BoundedObjectReader>
 
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
@@ -614,6 +615,25 @@ osg::ref_ptr<UsageScenario> readTextOutOfProcess(osgDB::ReaderWriter& rw, const 
     osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
     return scenarioOf(rr, label);
 }
+// OSG's ASCII and binary formats, in this process, read by BoundedObjectReader: OSG's own
+// loops on a failed stream (a read past the end, a value that does not parse; they used to need
+// a child process with a deadline) and sizes that lie (a 2 GB string in a bit-flipped .osgb)
+// end at the end of the data with a message. (XML keeps the helper process.)
+osg::ref_ptr<UsageScenario> readBounded(const std::string& data, const std::string& label)
+{
+    scenarioReaderWriter(); // the reader and our wrappers loaded, or a clear error
+    osg::ref_ptr<osg::Object> object;
+    try
+    {
+        object = BoundedObjectReader::readObject(data, nullptr);
+    }
+    catch (const MalformedFileError& e)
+    {
+        throw ScenarioError("malformed scenario file '" + label + "': " + e.what());
+    }
+    osgDB::ReaderWriter::ReadResult rr(object.get());
+    return scenarioOf(rr, label);
+}
 } // namespace
 
 namespace detail
@@ -642,22 +662,17 @@ std::string parseTextScenario(const std::string& text, const std::string& label)
 
 osg::ref_ptr<UsageScenario> ScenarioLibrary::readData(const std::string& data, const std::string& label)
 {
-    // osgdb_osg reads text whose first word is "#Ascii" with its ASCII reader, text whose first
-    // line starts with "<?xml" with its XML reader, and files with its magic number as binary.
-    std::string firstWord;
-    std::istringstream(data.substr(0, 64)) >> firstWord;
-    const bool ascii = firstWord == "#Ascii";
-    const bool xml = firstWord.compare(0, 5, "<?xml") == 0;
-    if (ascii)
+    // osgdb_osg's three formats: text whose first word is "#Ascii", text whose first line starts
+    // with "<?xml", and binary with its magic number.
+    const BoundedObjectReader::Format format = BoundedObjectReader::formatOf(data);
+    if (format == BoundedObjectReader::Format::Ascii)
     {
         const std::string problem = checkAsciiStructure(data);
         if (!problem.empty()) throw ScenarioError("malformed scenario file '" + label + "': " + problem);
     }
     osgDB::ReaderWriter& rw = scenarioReaderWriter();
-    if (ascii || xml) return readTextOutOfProcess(rw, data, label);
-    std::istringstream in(data);
-    osgDB::ReaderWriter::ReadResult rr = rw.readObject(in);
-    return scenarioOf(rr, label);
+    if (format == BoundedObjectReader::Format::Xml) return readTextOutOfProcess(rw, data, label);
+    return readBounded(data, label);
 }
 
 void ScenarioLibrary::writeFile(const UsageScenario& scenario, const std::string& path)

@@ -24,6 +24,7 @@
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/InputLimits>
+#include <osgLoA/util/BoundedObjectReader>
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Notify>
@@ -293,13 +294,21 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
     if (!found.empty() && ::stat(found.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
         throw LoaError{RR::ERROR_IN_READING_FILE,
                        context + "model '" + name + "' is not a regular file (a device or FIFO)"};
-    if (!found.empty() && osgDB::getLowerCaseFileExtension(found) == "osgt")
+    if (!found.empty() && osgLoA::BoundedObjectReader::handlesExtension(osgDB::getLowerCaseFileExtension(found)))
     {
-        // OSG 3.6.5's text reader loops forever on a truncated file.
-        const std::string problem = osgLoA::ModelValidation::checkOsgtStructure(found);
-        if (!problem.empty())
-            throw LoaError{RR::ERROR_IN_READING_FILE, context + "cannot read model '" + name +
-                                                          "': the OSG text file is incomplete: " + problem};
+        // OSG's own .osgt/.osgb readers loop forever on a truncated or bit-flipped file and trust
+        // the sizes it states: read with the work bounded by the file's size instead.
+        osg::ref_ptr<osg::Node> node;
+        try
+        {
+            node = osgLoA::BoundedObjectReader::readNodeFile(found, options);
+        }
+        catch (const osgLoA::MalformedFileError& e)
+        {
+            throw LoaError{RR::ERROR_IN_READING_FILE, context + "cannot read model '" + name + "': " + e.what()};
+        }
+        osgLoA::ModelValidation::validate(*node, name);
+        return node;
     }
     RR rr = osgDB::Registry::instance()->readNode(name, options);
     if (rr.validNode())

@@ -42,6 +42,15 @@ void setFilePath(const std::string& value)
     osgDB::Registry::instance()->initDataFilePathList();
 }
 
+std::string stockToolEnvironment()
+{
+#ifdef LOA_SANITIZER_PRELOAD
+    return "LD_PRELOAD='" LOA_SANITIZER_PRELOAD "' ASAN_OPTIONS=detect_leaks=0 ";
+#else
+    return std::string();
+#endif
+}
+
 int run(const std::string& command, std::string& output)
 {
     output.clear();

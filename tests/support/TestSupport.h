@@ -33,6 +33,12 @@ void setFilePath(const std::string& value);
 /** Runs a shell command; returns its exit status and fills stdout+stderr. */
 int run(const std::string& command, std::string& output);
 
+/** Environment assignments to put before a stock OSG program (osgconv, osgviewer) that loads
+ *  our plugins: empty in a normal build; in a sanitized one (OSGLOA_SANITIZE) the ASan runtime
+ *  preloaded, which an uninstrumented program needs to load instrumented plugins, and leak
+ *  detection off (the leaks would be OSG's own). Ends with a space when not empty. */
+std::string stockToolEnvironment();
+
 /** The node written to .osgt text (the whole graph, user values included). */
 std::string toOsgt(const osg::Node& node);
 

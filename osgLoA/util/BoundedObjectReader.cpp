@@ -1,0 +1,366 @@
+/* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/util/BoundedObjectReader>
+
+#include <osgLoA/util/ModelValidation>
+
+#include <osg/Endian>
+#include <osgDB/FileNameUtils>
+#include <osgDB/InputStream>
+#include <osgDB/ReaderWriter>
+#include <osgDB/Registry>
+#include <osgDB/StreamOperator>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <sys/stat.h>
+
+namespace osgLoA
+{
+namespace
+{
+// OSG's binary magic number (osgDB/Serializer's OSG_HEADER_LOW and _HIGH).
+constexpr std::uint32_t kHeaderLow = 0x6C910EA1u;
+constexpr std::uint32_t kHeaderHigh = 0x1AFB4545u;
+
+std::uint32_t swapped(std::uint32_t v)
+{
+    return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+}
+
+[[noreturn]] void malformed(const std::string& what)
+{
+    throw MalformedFileError(what);
+}
+
+/** OSG's binary input iterator (osgdb_osg's BinaryInputIterator, same reads in the same order,
+ *  byte swap and block brackets included) with every read checked: a size is compared with the
+ *  bytes left before anything is allocated, and a read that comes back short throws. The
+ *  stream may be replaced under it (InputStream::decompress hands it the inflated data), so the
+ *  bytes left are measured on the stream of the moment. */
+class BoundedBinaryIterator : public osgDB::InputIterator
+{
+public:
+    BoundedBinaryIterator(std::istream* in, bool byteSwap)
+    {
+        _in = in;
+        setByteSwap(byteSwap ? 1 : 0);
+    }
+
+    bool isBinary() const override { return true; }
+
+    void readBool(bool& b) override
+    {
+        char c = 0;
+        get(&c, 1, "a boolean");
+        b = c != 0;
+    }
+    void readChar(char& c) override { get(&c, 1, "a character"); }
+    void readSChar(signed char& c) override { get(&c, 1, "a character"); }
+    void readUChar(unsigned char& c) override { get(&c, 1, "a character"); }
+    void readShort(short& s) override { number(&s, sizeof s, "a short"); }
+    void readUShort(unsigned short& s) override { number(&s, sizeof s, "a short"); }
+    void readInt(int& i) override { number(&i, sizeof i, "an integer"); }
+    void readUInt(unsigned int& i) override { number(&i, sizeof i, "an integer"); }
+    void readLong(long& l) override
+    {
+        std::int32_t v = 0; // 4 bytes in the file, whatever a long is here
+        number(&v, sizeof v, "an integer");
+        l = v;
+    }
+    void readULong(unsigned long& l) override
+    {
+        std::uint32_t v = 0;
+        number(&v, sizeof v, "an integer");
+        l = v;
+    }
+    void readFloat(float& f) override { number(&f, sizeof f, "a number"); }
+    void readDouble(double& d) override { number(&d, sizeof d, "a number"); }
+    void readString(std::string& s) override
+    {
+        int size = 0;
+        readInt(size);
+        if (size < 0) malformed(at() + ": a string of negative length " + std::to_string(size));
+        if (static_cast<std::uint64_t>(size) > remaining())
+            malformed(at() + ": a string of " + std::to_string(size) + " bytes, with " +
+                      std::to_string(remaining()) + " left in the data");
+        s.resize(static_cast<std::size_t>(size));
+        if (size > 0) get(&s[0], static_cast<std::size_t>(size), "a string");
+    }
+    void readStream(std::istream& (*)(std::istream&)) override {}
+    void readBase(std::ios_base& (*)(std::ios_base&)) override {}
+    void readGLenum(osgDB::ObjectGLenum& value) override
+    {
+        std::uint32_t e = 0;
+        number(&e, sizeof e, "a GL enum");
+        value.set(e);
+    }
+    void readProperty(osgDB::ObjectProperty& prop) override
+    {
+        int value = 0;
+        if (prop._mapProperty) number(&value, sizeof value, "an enum");
+        prop.set(value);
+    }
+    void readMark(osgDB::ObjectMark& mark) override
+    {
+        if (!_supportBinaryBrackets) return;
+        if (mark._name == "{")
+        {
+            const std::uint64_t begin = position();
+            std::uint64_t size = 0;
+            if (getInputStream() && getInputStream()->getFileVersion() > 148)
+                number(&size, sizeof size, "a block size");
+            else
+            {
+                std::int32_t s32 = 0;
+                number(&s32, sizeof s32, "a block size");
+                if (s32 < 0) malformed(at() + ": a block of negative size");
+                size = static_cast<std::uint64_t>(s32);
+            }
+            if (size > remaining() + (position() - begin))
+                malformed(at() + ": a block of " + std::to_string(size) + " bytes, with " +
+                          std::to_string(remaining()) + " left in the data");
+            _blocks.push_back({begin, size});
+        }
+        else if (mark._name == "}" && !_blocks.empty())
+            _blocks.pop_back();
+    }
+    void readCharArray(char* s, unsigned int size) override
+    {
+        if (size > remaining())
+            malformed(at() + ": an array of " + std::to_string(size) + " bytes, with " +
+                      std::to_string(remaining()) + " left in the data");
+        if (size > 0) get(s, size, "an array");
+    }
+    void readWrappedString(std::string& s) override { readString(s); }
+    void advanceToCurrentEndBracket() override
+    {
+        if (!_supportBinaryBrackets || _blocks.empty()) return;
+        const Block b = _blocks.back();
+        _blocks.pop_back();
+        _in->clear();
+        _in->seekg(static_cast<std::streamoff>(b.begin + b.size));
+        if (!*_in) malformed(at() + ": a block ends past the end of the data");
+    }
+
+private:
+    struct Block
+    {
+        std::uint64_t begin, size;
+    };
+    std::vector<Block> _blocks;
+    const std::istream* _sized = nullptr;
+    std::uint64_t _size = 0;
+
+    std::uint64_t position()
+    {
+        const std::streamoff p = _in->tellg();
+        if (p < 0) malformed("the data ends early (a read failed)");
+        return static_cast<std::uint64_t>(p);
+    }
+    std::uint64_t remaining()
+    {
+        if (_sized != _in)
+        {
+            const std::streampos here = _in->tellg();
+            _in->seekg(0, std::ios::end);
+            _size = static_cast<std::uint64_t>(static_cast<std::streamoff>(_in->tellg()));
+            _in->seekg(here);
+            _sized = _in;
+        }
+        const std::uint64_t p = position();
+        return p < _size ? _size - p : 0;
+    }
+    std::string at() { return "byte " + std::to_string(position()); }
+    void get(void* p, std::size_t n, const char* what)
+    {
+        if (n > remaining()) malformed(at() + ": the data ends inside " + what);
+        _in->read(static_cast<char*>(p), static_cast<std::streamsize>(n));
+        if (_in->gcount() != static_cast<std::streamsize>(n))
+            malformed("the data ends inside " + std::string(what));
+    }
+    void number(void* p, std::size_t n, const char* what)
+    {
+        get(p, n, what);
+        if (_byteSwap) osg::swapBytes(static_cast<char*>(p), static_cast<unsigned int>(n));
+    }
+};
+
+std::string streamError(osgDB::InputStream& is)
+{
+    const osgDB::InputException* e = is.getException();
+    if (!e) return std::string();
+    const std::string where = e->getField();
+    return e->getError() + (where.empty() ? std::string() : " (at " + where + ")");
+}
+
+osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Options* options, bool needNode)
+{
+    std::uint32_t low = 0, high = 0;
+    std::memcpy(&low, data.data(), 4);
+    std::memcpy(&high, data.data() + 4, 4);
+    const bool swap = !(low == kHeaderLow && high == kHeaderHigh);
+    std::istringstream in(data);
+    in.seekg(8);
+    osg::ref_ptr<BoundedBinaryIterator> it = new BoundedBinaryIterator(&in, swap);
+    osgDB::InputStream is(options);
+    const osgDB::InputStream::ReadType type = is.start(it.get());
+    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+    if (type == osgDB::InputStream::READ_UNKNOWN) malformed("an OSG binary file of unknown content type");
+    if (needNode && type != osgDB::InputStream::READ_SCENE && type != osgDB::InputStream::READ_OBJECT)
+        malformed("an OSG binary file that holds no scene");
+    is.decompress();
+    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+    osg::ref_ptr<osg::Object> object = is.readObject();
+    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+    return object;
+}
+
+osg::ref_ptr<osg::Object> readAscii(const std::string& data, const osgDB::Options* options, bool needNode)
+{
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    if (!rw) malformed("no osgDB reader for OSG text files (osgdb_osg missing)");
+    std::istringstream in(data);
+    in.exceptions(std::ios::failbit | std::ios::badbit);
+    osg::ref_ptr<osgDB::Options> local =
+        options ? static_cast<osgDB::Options*>(options->clone(osg::CopyOp::SHALLOW_COPY))
+                : new osgDB::Options;
+    local->setPluginStringData("fileType", "Ascii");
+    osgDB::ReaderWriter::ReadResult rr;
+    try
+    {
+        rr = needNode ? rw->readNode(in, local.get()) : rw->readObject(in, local.get());
+    }
+    catch (const std::ios_base::failure&)
+    {
+        malformed("the text ends before its objects do (a value or a list entry is missing, or a value does "
+                  "not read as its type)");
+    }
+    if (!rr.success() || !rr.getObject())
+        malformed(rr.message().empty() ? std::string("OSG's text reader returned nothing") : rr.message());
+    return rr.getObject();
+}
+} // namespace
+
+BoundedObjectReader::Format BoundedObjectReader::formatOf(const std::string& data)
+{
+    if (data.size() >= 8)
+    {
+        std::uint32_t low = 0, high = 0;
+        std::memcpy(&low, data.data(), 4);
+        std::memcpy(&high, data.data() + 4, 4);
+        if ((low == kHeaderLow && high == kHeaderHigh) ||
+            (low == swapped(kHeaderLow) && high == swapped(kHeaderHigh)))
+            return Format::Binary;
+    }
+    std::string firstWord;
+    std::istringstream(data.substr(0, 64)) >> firstWord;
+    if (firstWord == "#Ascii") return Format::Ascii;
+    if (firstWord.compare(0, 5, "<?xml") == 0) return Format::Xml;
+    return Format::Unknown;
+}
+
+osg::ref_ptr<osg::Object> BoundedObjectReader::readObject(const std::string& data,
+                                                          const osgDB::Options* options)
+{
+    switch (formatOf(data))
+    {
+    case Format::Binary:
+        return readBinary(data, options, false);
+    case Format::Ascii:
+        return readAscii(data, options, false);
+    case Format::Xml:
+        malformed("OSG XML files are not read by the bounded reader");
+    case Format::Unknown:
+        break;
+    }
+    malformed("not an OSG file (neither the binary header nor '#Ascii')");
+}
+
+osg::ref_ptr<osg::Node> BoundedObjectReader::readNode(const std::string& data, const osgDB::Options* options)
+{
+    osg::ref_ptr<osg::Object> o;
+    switch (formatOf(data))
+    {
+    case Format::Binary:
+        o = readBinary(data, options, true);
+        break;
+    case Format::Ascii:
+        o = readAscii(data, options, true);
+        break;
+    case Format::Xml:
+        malformed("OSG XML files are not read by the bounded reader");
+    case Format::Unknown:
+        malformed("not an OSG file (neither the binary header nor '#Ascii')");
+    }
+    osg::ref_ptr<osg::Node> node = dynamic_cast<osg::Node*>(o.get());
+    if (!node)
+        malformed(std::string("the file holds a ") + (o ? o->className() : "nothing") + ", not a scene");
+    return node;
+}
+
+bool BoundedObjectReader::handlesExtension(const std::string& extension)
+{
+    return extension == "osgt" || extension == "osgb";
+}
+
+namespace
+{
+std::string fileData(const std::string& path)
+{
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) malformed("cannot be opened: " + std::string(std::strerror(errno)));
+    if (!S_ISREG(st.st_mode)) malformed("not a regular file (a device, FIFO or folder)");
+    std::ifstream in(path.c_str(), std::ios::binary);
+    if (!in) malformed("cannot be opened");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (in.bad()) malformed("cannot be read");
+    return bytes.str();
+}
+
+void checkStructure(const std::string& data)
+{
+    if (BoundedObjectReader::formatOf(data) != BoundedObjectReader::Format::Ascii) return;
+    const std::string problem = ModelValidation::checkOsgtText(data);
+    if (!problem.empty()) malformed("the OSG text file is incomplete: " + problem);
+}
+
+osg::ref_ptr<osgDB::Options> optionsFor(const std::string& path, const osgDB::Options* options)
+{
+    osg::ref_ptr<osgDB::Options> local =
+        options ? static_cast<osgDB::Options*>(options->clone(osg::CopyOp::SHALLOW_COPY))
+                : new osgDB::Options;
+    local->getDatabasePathList().push_front(osgDB::getFilePath(path));
+    return local;
+}
+} // namespace
+
+osg::ref_ptr<osg::Object> BoundedObjectReader::readCheckedObject(const std::string& data,
+                                                                 const osgDB::Options* options)
+{
+    checkStructure(data);
+    return readObject(data, options);
+}
+
+osg::ref_ptr<osg::Node> BoundedObjectReader::readNodeFile(const std::string& path,
+                                                          const osgDB::Options* options)
+{
+    const std::string data = fileData(path);
+    checkStructure(data);
+    return readNode(data, optionsFor(path, options).get());
+}
+
+osg::ref_ptr<osg::Object> BoundedObjectReader::readObjectFile(const std::string& path,
+                                                              const osgDB::Options* options)
+{
+    const std::string data = fileData(path);
+    checkStructure(data);
+    return readObject(data, optionsFor(path, options).get());
+}
+
+} // namespace osgLoA
