@@ -1,6 +1,6 @@
 // ScenarioLibrary's guard against text that OSG 3.6.5's ASCII reader loops on forever
 // (AsciiInputIterator::readWrappedString at the end of the stream), with the reproducers the
-// fuzzer found (tests/fuzz/crashes/hang-*), and the helper program loa-scenario-parse that
+// fuzzer found (tests/fuzz/crashes/scenario/hang-*), and the helper program loa-scenario-parse that
 // parses text files out of process.
 #include "support/TestSupport.h"
 
@@ -143,7 +143,7 @@ TEST(ScenarioLibraryTest, EveryLibraryFilePassesTheCheck)
 // Each of these made osgconv and our readers loop forever before the check.
 TEST(ScenarioLibraryTest, TruncatedFilesFailFastWithTheReason)
 {
-    const std::string dir = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/";
+    const std::string dir = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/scenario/";
     const std::pair<const char*, const char*> cases[] = {
         {"hang-eof-inside-quoted-string.osgt", "ends inside a quoted string"},
         {"hang-eof-after-property-name.osgt", "ends inside an object"},
@@ -173,11 +173,11 @@ TEST(ScenarioLibraryTest, TruncatedFilesFailFastWithTheReason)
 // Text that is structurally complete but made OSG's reader loop once a value failed to parse
 // (the stream stayed failed; it used to run in a child process given 5 s): read in process on a
 // stream that throws on failure, it ends at the end of the data with a message, at once. So do
-// the other reproducers whose structure is complete, and every file of tests/fuzz/crashes/.
+// the other reproducers whose structure is complete.
 TEST(ScenarioLibraryTest, AReaderThatWouldLoopEndsWithTheData)
 {
     const std::string path =
-        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/hang-fuzzer-found-failed-stream.osgt";
+        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/scenario/hang-fuzzer-found-failed-stream.osgt";
     ASSERT_EQ(ScenarioLibrary::checkAsciiStructure(textOf(path)), "")
         << "the guard's first check must pass it";
     const auto t0 = std::chrono::steady_clock::now();
@@ -194,7 +194,7 @@ TEST(ScenarioLibraryTest, AReaderThatWouldLoopEndsWithTheData)
     EXPECT_LT(secondsSince(t0), 1.0);
     // 4,000,000,000 list entries promised, 8 there: OSG's list reader pushed null entries for
     // minutes, then ran out of memory.
-    const std::string huge = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/oom-huge-list-count.osgt";
+    const std::string huge = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/scenario/oom-huge-list-count.osgt";
     const auto t1 = std::chrono::steady_clock::now();
     EXPECT_THROW(ScenarioLibrary::readFile(huge), ScenarioError);
     EXPECT_LT(secondsSince(t1), 1.0);
@@ -396,7 +396,7 @@ TEST(ScenarioLibraryTest, TheHelperRepliesWithTheScenarioOrTheError)
     ASSERT_FALSE(out.empty());
     EXPECT_EQ(out[0], 'S');
     const std::string bad =
-        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/ub-metric-kind-9-invalid-enum.osgt";
+        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/scenario/ub-metric-kind-9-invalid-enum.osgt";
     ASSERT_EQ(loatest::run("('" + helper + "' --label my-label < '" + bad + "' 2>/dev/null)", out), 0) << out;
     EXPECT_EQ(out.compare(0, 36, "Ecannot read scenario file 'my-label"), 0) << out;
     EXPECT_NE(out.find("unknown Kind '9'"), std::string::npos) << out;

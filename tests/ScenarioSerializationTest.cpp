@@ -609,11 +609,11 @@ template <class T> std::string patched(std::string data, std::size_t at, T v)
 }
 } // namespace
 
-// Each ub-* and oom-* input the fuzzer found (tests/fuzz/crashes; the hang-* ones are
+// Each ub-* and oom-* input the fuzzer found (tests/fuzz/crashes/scenario; the hang-* ones are
 // ScenarioLibrary's) fails to read, quickly, with a message that names the problem.
 TEST(ScenarioSerializationTest, FuzzReproducersFailQuicklyNamingTheProblem)
 {
-    const std::string crashes = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes";
+    const std::string crashes = std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/scenario";
     const std::map<std::string, std::string> problems = {
         {"oom-huge-list-count.osgt",
          "UsageScenario: Configurations count 4000000000 is above the limit of 65536"},
@@ -633,7 +633,7 @@ TEST(ScenarioSerializationTest, FuzzReproducersFailQuicklyNamingTheProblem)
         expectErrorSaying(crashes + "/" + f, known != problems.end() ? known->second : ": ");
     }
     for (const auto& kv : problems)
-        EXPECT_EQ(seen.count(kv.first), 1u) << "tests/fuzz/crashes/" << kv.first << " is gone";
+        EXPECT_EQ(seen.count(kv.first), 1u) << "tests/fuzz/crashes/scenario/" << kv.first << " is gone";
 }
 
 // Enums read by name only, counts up to a limit, list entries of the element class only

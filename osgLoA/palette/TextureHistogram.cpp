@@ -672,6 +672,7 @@ std::map<const osg::Image*, std::vector<double>> TextureHistogram::sceneWeights(
     {
         const osg::Image* image = e.texture->getImage(0);
         const int w = image->s(), h = image->t();
+        if (w < 1 || h < 1 || !image->data()) continue; // unreadable, or emptied by ModelValidation
         const ImageBorder border = ImageBorder::of(*e.texture);
         std::vector<double>& acc = out[image];
         if (acc.empty()) acc.assign(std::size_t(w) * std::size_t(h), 0.0);

@@ -1,19 +1,23 @@
 // libFuzzer target: arbitrary bytes as a scenario file, read by ScenarioLibrary::readData (the
-// guarded entry every scenario reader uses), which hands them to OSG's own reader
-// for .osgt/.osgb/.osgx (osgdb_osg's ReaderWriter, which tells the three formats apart by
-// their header) with our serializer wrappers (osgdb_serializers_osgloa); a scenario that comes
+// guarded entry every scenario reader uses), in process: .osgt and .osgb through
+// BoundedObjectReader (OSG's ASCII reader on a throwing stream, OSG's InputStream with our
+// bounded binary iterator) with our serializer wrappers (osgdb_serializers_osgloa); a scenario that comes
 // out (a UsageScenario, or the one a LoANode carries, as ScenarioLibrary::readFile accepts) is
 // validated, and when it validates it is bound to a small fixed scene and evaluated, and the
 // evaluator's promises are checked (interest in [0,1], weights normalized, a weighted match may
 // draw).
 //
-// Build and run: scripts/fuzz (FUZZ_SECONDS, default 30). Seed corpus: data/scenarios/*.osgt.
+// Build and run: scripts/fuzz (FUZZ_SECONDS, default 30). Seed corpus: data/scenarios/*.osgt and
+// tests/fuzz/corpus/scenario (binary copies).
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioEvaluator>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/transitions/UsageScenario>
+#include <osgLoA/util/BoundedObjectReader>
+
+#include "FuzzSupport.h"
 
 #include <osg/Geode>
 #include <osg/Geometry>
@@ -22,6 +26,7 @@
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Registry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -32,62 +37,6 @@
 namespace
 {
 using namespace osgLoA;
-
-osg::ref_ptr<osg::Geode> box(const osg::Vec3& minimum, const osg::Vec3& maximum)
-{
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    for (int i = 0; i < 8; ++i)
-        v->push_back(osg::Vec3(i & 1 ? maximum.x() : minimum.x(), i & 2 ? maximum.y() : minimum.y(),
-                               i & 4 ? maximum.z() : minimum.z()));
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 8));
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
-    return geode;
-}
-
-osg::Geode* addFeature(osg::Group& parent, Feature* f, const osg::Vec3& minimum, const osg::Vec3& maximum)
-{
-    osg::ref_ptr<osg::Geode> g = box(minimum, maximum);
-    Feature::attach(*g, f);
-    parent.addChild(g.get());
-    return g.get();
-}
-
-/** Every feature type, sub-types, a known and an unknown LoD, a landmark, a wood of trees (a
- *  nested group), and feature 1 (the blueprint scenario's focus object). */
-struct Scene
-{
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    FeatureIndex index;
-
-    Scene()
-    {
-        osg::ref_ptr<Feature> landmark = new Feature(1, FeatureType::Building, "church");
-        landmark->setInterest(1.0f);
-        landmark->setLod(2.0f);
-        addFeature(*root, landmark.get(), osg::Vec3(-10, -10, 0), osg::Vec3(10, 10, 40));
-        addFeature(*root, new Feature(2, FeatureType::Building), osg::Vec3(100, 0, 0),
-                   osg::Vec3(120, 20, 15));
-        addFeature(*root, new Feature(3, FeatureType::Street, "major"), osg::Vec3(-500, -4, 0),
-                   osg::Vec3(500, 4, 0.2f));
-        addFeature(*root, new Feature(4, FeatureType::Water, "river"), osg::Vec3(-500, 200, -1),
-                   osg::Vec3(500, 260, 0));
-        addFeature(*root, new Feature(5, FeatureType::Terrain), osg::Vec3(-500, -500, -5),
-                   osg::Vec3(500, 500, 0));
-        addFeature(*root, new Feature(6, FeatureType::Generic), osg::Vec3(-300, -300, 0),
-                   osg::Vec3(-299, -299, 3));
-        osg::ref_ptr<osg::Group> wood = new osg::Group;
-        Feature::attach(*wood, new Feature(7, FeatureType::Green, "mixed forest"));
-        root->addChild(wood.get());
-        for (unsigned i = 0; i < 4; ++i)
-            addFeature(*wood, new Feature(8 + i, FeatureType::Green, i % 2 ? "coniferous" : "deciduous"),
-                       osg::Vec3(300.0f + 10.0f * i, 300, 0), osg::Vec3(304.0f + 10.0f * i, 304, 12));
-        index.build(*root);
-        index.updateBounds();
-    }
-};
 
 [[noreturn]] void fail(const char* what, double value)
 {
@@ -131,9 +80,26 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
     return 0;
 }
 
+struct Scene
+{
+    osg::ref_ptr<osg::Group> root = fuzz::smallCity(true);
+    FeatureIndex index;
+    Scene()
+    {
+        index.build(*root);
+        index.updateBounds();
+    }
+};
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     static Scene scene;
+    // XML scenario files are parsed by the helper process loa-scenario-parse (OSG's XML reader
+    // is not bounded in process), a spawn per input: outside what this target measures.
+    if (BoundedObjectReader::formatOf(
+            std::string(reinterpret_cast<const char*>(data), std::min<std::size_t>(size, 64))) ==
+        BoundedObjectReader::Format::Xml)
+        return 0;
 
     // The guarded entry point every reader of scenario files goes through.
     osg::ref_ptr<UsageScenario> scenario;
