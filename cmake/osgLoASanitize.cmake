@@ -16,6 +16,10 @@ endif()
 set(_loa_sanitize -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 add_compile_options(${_loa_sanitize})
 add_link_options(${_loa_sanitize})
+# osgDB unloads plugins at exit, before LeakSanitizer looks: a leak in a plugin (or in a library
+# only a plugin pulls in, such as libcitygml) would be reported from "<unknown module>", which
+# no suppression can name. Our shared objects stay loaded (-z nodelete), so stacks keep names.
+add_link_options(-Wl,-z,nodelete)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     # GCC's flow analysis sees through ASan's instrumentation badly: with it, GCC 12 reports
     # -Wmaybe-uninitialized on std::string members of OSG's serializer templates

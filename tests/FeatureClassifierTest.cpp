@@ -918,5 +918,11 @@ TEST(FeatureClassifierTest, DeepChainsTakeLinearMemory)
     struct rusage after;
     ::getrusage(RUSAGE_SELF, &after);
     EXPECT_EQ(r.units, 8000u);
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer's redzones and its quarantine of freed memory (256 MB) make the peak
+    // meaningless here; the normal build measures it.
+    (void)before, (void)after;
+#else
     EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 150L * 1024) << "kB grown by the classification";
+#endif
 }

@@ -163,7 +163,9 @@ TEST(FeatureTest, DemoCityFeaturesSurviveOsgtAndOsgbRoundTrips)
     for (const char* ext : {"osgt", "osgb"})
     {
         const std::string path = dir + "/city." + ext;
-        ASSERT_TRUE(osgDB::writeNodeFile(*city, path, new osgDB::Options("WriteImageHint=IncludeData")));
+        ASSERT_TRUE(osgDB::writeNodeFile(
+            *city, path,
+            osg::ref_ptr<osgDB::Options>(new osgDB::Options("WriteImageHint=IncludeData")).get()));
         osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path);
         ASSERT_TRUE(back.valid()) << path;
         EXPECT_EQ(loatest::toOsgt(*back), first) << ext << " round trip changed the graph";

@@ -121,7 +121,8 @@ std::string makeModel(const std::string& dir)
     root->addChild(quad(five.get(), 0, 1.0f));
     root->addChild(quad(half.get(), 2, 0.5f));
     const std::string path = dir + "/model.osgt";
-    EXPECT_TRUE(osgDB::writeNodeFile(*root, path, new osgDB::Options("WriteImageHint=IncludeData")));
+    EXPECT_TRUE(osgDB::writeNodeFile(
+        *root, path, osg::ref_ptr<osgDB::Options>(new osgDB::Options("WriteImageHint=IncludeData")).get()));
     return path;
 }
 
@@ -276,7 +277,8 @@ TEST_F(LoaPalette, DemoCity)
     EXPECT_TRUE(contains(out, " 0 skipped")) << out;
 
     // The textures, read here independently of the tool.
-    osg::ref_ptr<osg::Node> city = osgDB::readNodeFile("demo.loacity", new osgDB::Options(options));
+    osg::ref_ptr<osg::Node> city =
+        osgDB::readNodeFile("demo.loacity", osg::ref_ptr<osgDB::Options>(new osgDB::Options(options)).get());
     ASSERT_TRUE(city);
     std::map<std::string, osg::ref_ptr<osg::Image>> images;
     struct Collect : osg::NodeVisitor

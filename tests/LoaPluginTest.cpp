@@ -108,8 +108,8 @@ std::string quote(const std::string& s)
 std::string osgconv(const std::string& args, int& rc)
 {
     std::string out;
-    rc = loatest::run("env " + loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
-                          "/lib' osgconv " + args,
+    rc = loatest::run("env " + loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" +
+                          std::string(LOA_BINARY_DIR) + "/lib' osgconv " + args,
                       out);
     return out;
 }
@@ -131,7 +131,8 @@ TEST(LoaPluginTest, DemoCityGetsTheDefaultScenarioAndItsFeaturesKeepTheirTypes)
 
     // The city's own features (source MODEL_DATA) are kept as the generator typed them: the
     // counts per type are those of the plain city.
-    osg::ref_ptr<osg::Node> plain = osgDB::readRefNodeFile("demo.loacity", new osgDB::Options(kCity));
+    osg::ref_ptr<osg::Node> plain =
+        osgDB::readRefNodeFile("demo.loacity", osg::ref_ptr<osgDB::Options>(new osgDB::Options(kCity)).get());
     ASSERT_TRUE(plain.valid());
     const osgLoA::FeatureIndex::Counts expected = osgLoA::FeatureIndex(*plain).counts();
     osgLoA::FeatureIndex index(*loa);
