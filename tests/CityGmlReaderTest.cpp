@@ -16,6 +16,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <fstream>
 #include <map>
 
@@ -160,4 +163,72 @@ TEST(CityGmlReaderTest, ErrorsNameTheFileAndTheProblem)
     auto broken = rw->readNode(dir + "/broken.gml");
     EXPECT_FALSE(broken.validNode());
     EXPECT_NE(broken.message().find("broken.gml"), std::string::npos) << broken.message();
+}
+
+// The limits checked before libcitygml parses (issue 22 item 1, CityGmlPrescan): 20,000 nested
+// BuildingParts did not finish in a minute; a gml:posList of 100,001 vertices; a FIFO. Each is
+// refused in under a second naming the file, the limit and the option, and reads past it with
+// the limit raised. The real file still reads under the defaults (its elements nest 12 deep).
+TEST(CityGmlReaderTest, LimitsAreCheckedBeforeParsing)
+{
+    const std::string dir = loatest::freshDirectory("CityGmlReaderTest-limits");
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("gml");
+    ASSERT_NE(rw, nullptr);
+    const std::string head =
+        "<?xml version=\"1.0\"?><core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
+        "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" "
+        "xmlns:gml=\"http://www.opengis.net/gml\"><core:cityObjectMember>"
+        "<bldg:Building gml:id=\"b\">";
+    const std::string foot = "</bldg:Building></core:cityObjectMember></core:CityModel>";
+    {
+        std::ofstream out(dir + "/deep.gml");
+        out << head;
+        for (int i = 0; i < 20000; ++i)
+            out << "<!-- a comment > with > brackets --><bldg:consistsOfBuildingPart><bldg:BuildingPart "
+                   "gml:id=\"p"
+                << i << "\" class=\"a > b\">";
+        for (int i = 0; i < 20000; ++i)
+            out << "</bldg:BuildingPart></bldg:consistsOfBuildingPart>";
+        out << foot;
+    }
+    {
+        std::ofstream out(dir + "/long-ring.gml");
+        out << head
+            << "<bldg:lod1MultiSurface><gml:MultiSurface><gml:surfaceMember><gml:Polygon><gml:exterior>"
+            << "<gml:LinearRing><gml:posList srsDimension=\"3\">";
+        for (int i = 0; i < 100001; ++i)
+            out << i << " 0 0 ";
+        out << "</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon></gml:surfaceMember>"
+            << "</gml:MultiSurface></bldg:lod1MultiSurface>" << foot;
+    }
+    const struct
+    {
+        const char* file;
+        const char* limit;
+        const char* raised;
+    } cases[] = {{"deep.gml", "max-depth=64", "max-depth=100000"},
+                 {"long-ring.gml", "max-ring-vertices=100000", "max-ring-vertices=200000"}};
+    for (const auto& c : cases)
+    {
+        const auto t0 = std::chrono::steady_clock::now();
+        auto rr = rw->readNode(dir + "/" + c.file);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        EXPECT_FALSE(rr.validNode()) << c.file;
+        EXPECT_NE(rr.message().find(std::string(c.file) + ": "), std::string::npos) << rr.message();
+        EXPECT_NE(rr.message().find(std::string("exceeds the limit ") + c.limit), std::string::npos)
+            << rr.message();
+        EXPECT_LT(seconds, 1.0) << c.file;
+        if (std::string(c.file) == "long-ring.gml")
+        {
+            // Raised, the prescan lets it through to libcitygml.
+            osg::ref_ptr<osgDB::Options> raised = new osgDB::Options(c.raised);
+            auto again = rw->readNode(dir + "/" + c.file, raised.get());
+            EXPECT_EQ(again.message().find("exceeds the limit"), std::string::npos) << again.message();
+        }
+    }
+    ASSERT_EQ(::mkfifo((dir + "/fifo.gml").c_str(), 0600), 0);
+    auto fifo = rw->readNode(dir + "/fifo.gml");
+    EXPECT_FALSE(fifo.validNode());
+    EXPECT_NE(fifo.message().find("not a regular file"), std::string::npos) << fifo.message();
+    EXPECT_TRUE(read().valid()) << "the real file no longer reads under the default limits";
 }

@@ -226,3 +226,27 @@ TEST(ModelValidationTest, RepeatedNoticesAreCounted)
     EXPECT_EQ(lines, 2u) << out;
     EXPECT_NE(out.find("(the line above 48 more times)"), std::string::npos) << out;
 }
+
+// The libraries' notices and info are shown only with --verbose (issue 22 item 3): without it
+// they are counted, and a tool that fails says how many it hid; warnings always show.
+TEST(ModelValidationTest, LibraryChatterOnlyWithVerbose)
+{
+    const std::string dir = loatest::freshDirectory("ModelValidationVerbose");
+    std::ofstream(dir + "/short.osgt") << "#Ascii Scene\n#Version 161\n#Generator OpenSceneGraph 3.6.5\n\n"
+                                          "osg::Group {\n  UniqueID 1\n  Children 3 {\n  }\n}\n";
+    const std::string classify = "'" + std::string(LOA_CLASSIFY_EXE) + "' ";
+    std::string quiet, verbose, failed;
+    // OSG says at INFO level which plugins it opens: chatter.
+    EXPECT_EQ(loatest::run("(" + classify + "demo.loacity --json >/dev/null)", quiet), 0) << quiet;
+    EXPECT_EQ(quiet.find("DynamicLibrary"), std::string::npos) << quiet;
+    EXPECT_EQ(loatest::run("(" + classify + "demo.loacity --json --verbose >/dev/null)", verbose), 0)
+        << verbose;
+    EXPECT_NE(verbose.find("DynamicLibrary"), std::string::npos) << verbose;
+    // A failing read with OSG's level at INFO but no --verbose: the error line, and the count.
+    EXPECT_EQ(loatest::run("OSG_NOTIFY_LEVEL=INFO " + classify + "'" + dir + "/short.osgt'", failed), 1)
+        << failed;
+    EXPECT_NE(failed.find("loa-classify: error: cannot read"), std::string::npos) << failed;
+    EXPECT_NE(failed.find("notices from the libraries were hidden; --verbose shows them"), std::string::npos)
+        << failed;
+    EXPECT_EQ(failed.find("DynamicLibrary"), std::string::npos) << failed;
+}

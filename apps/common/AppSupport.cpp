@@ -49,13 +49,22 @@ namespace
 /** OSG's standard handler writes NOTICE and INFO to stdout: a tool that writes data there
  *  (JSON, PPM, a scenario) would get diagnostics inside it. Every level goes to stderr, and a
  *  message repeated line after line is shown twice, then counted (OSG's text reader once wrote
- *  43,019 identical "InputIterator::checkStream()" lines before one error). */
+ *  43,019 identical "InputIterator::checkStream()" lines before one error).
+ *
+ *  Warnings and errors (ours: a dropped drawable, an unreadable texture; OSG's: a file it cannot
+ *  read) are always shown. Notices and info, third-party chatter for the user of a tool, are
+ *  counted and shown only with --verbose (setVerbose); a tool that fails says how many it hid. */
 class StderrNotifyHandler : public osg::NotifyHandler
 {
 public:
-    void notify(osg::NotifySeverity, const char* message) override
+    void notify(osg::NotifySeverity severity, const char* message) override
     {
         std::lock_guard<std::mutex> lock(_mutex);
+        if (severity > osg::WARN && !_verbose)
+        {
+            ++_hidden;
+            return;
+        }
         if (_last == message)
         {
             if (++_repeats <= 1) std::fputs(message, stderr);
@@ -70,6 +79,16 @@ public:
         std::lock_guard<std::mutex> lock(_mutex);
         flushLocked();
     }
+    void setVerbose(bool verbose)
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        _verbose = verbose;
+    }
+    unsigned long hidden()
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        return _hidden;
+    }
 
 private:
     void flushLocked()
@@ -81,6 +100,8 @@ private:
     std::mutex _mutex;
     std::string _last;
     unsigned long _repeats = 0;
+    unsigned long _hidden = 0;
+    bool _verbose = false;
 };
 
 osg::ref_ptr<StderrNotifyHandler>& stderrHandler()
@@ -94,6 +115,27 @@ void flushNotices()
 {
     if (stderrHandler().valid()) stderrHandler()->flush();
 }
+
+void setVerbose(bool verbose)
+{
+    if (!stderrHandler().valid()) return;
+    stderrHandler()->setVerbose(verbose);
+    // OSG's own level (OSG_NOTIFY_LEVEL, NOTICE by default) decides what reaches the handler:
+    // --verbose lets INFO through as well, unless the environment asked for more.
+    if (verbose && osg::getNotifyLevel() < osg::INFO) osg::setNotifyLevel(osg::INFO);
+}
+
+namespace
+{
+/** Before a tool's error line: pending repeat counts, and how many notices --verbose would show. */
+void flushBeforeError(const char* tool)
+{
+    flushNotices();
+    if (stderrHandler().valid() && stderrHandler()->hidden() > 0)
+        std::cerr << tool << ": (" << stderrHandler()->hidden()
+                  << " notices from the libraries were hidden; --verbose shows them)\n";
+}
+} // namespace
 
 void notifyToStderr()
 {
@@ -125,26 +167,26 @@ int runBody(const char* tool, const std::function<int()>& body)
     }
     catch (const UsageError& e)
     {
-        flushNotices(); // counted repeats before the error line
+        flushBeforeError(tool); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kUsage;
     }
     catch (const osgLoA::HeadlessContextError& e)
     {
-        flushNotices(); // counted repeats before the error line
+        flushBeforeError(tool); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kNoContext;
     }
     catch (const std::invalid_argument& e)
     {
-        flushNotices(); // counted repeats before the error line
+        flushBeforeError(tool); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kUsage;
     }
     catch (const std::bad_alloc&)
     {
         // A bare "std::bad_alloc" named nothing: say what it means and where the limits are.
-        flushNotices(); // counted repeats before the error line
+        flushBeforeError(tool); // counted repeats before the error line
         std::cerr << tool
                   << ": error: out of memory: an input is larger than this machine can hold, or states sizes "
                      "it does not have (reader limits: docs/reliability.md)\n";
@@ -152,7 +194,7 @@ int runBody(const char* tool, const std::function<int()>& body)
     }
     catch (const std::exception& e)
     {
-        flushNotices(); // counted repeats before the error line
+        flushBeforeError(tool); // counted repeats before the error line
         std::cerr << tool << ": error: " << e.what() << "\n";
         return kFailure;
     }

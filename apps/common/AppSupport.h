@@ -43,6 +43,9 @@ void findPlugins();
 void notifyToStderr();
 /** Prints the count of a repeated notification still pending (runTool does at the end). */
 void flushNotices();
+/** --verbose: OSG's and other libraries' notices and info shown too (collapsed as warnings
+ *  are); without it they are counted, and a tool that fails says how many it hid. */
+void setVerbose(bool verbose);
 
 /** Runs a tool's body and maps exceptions to one line "<tool>: error: <what>" on stderr and
  *  the exit codes above: UsageError and std::invalid_argument 2, HeadlessContextError 3,

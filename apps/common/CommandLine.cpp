@@ -225,6 +225,11 @@ CommandLine::CommandLine(const char* tool, const std::string& usage, const std::
             "--version", [] { throw VersionRequest(); }, "print the version and exit")
         ->group(kGroupOptions)
         ->trigger_on_parse();
+    _app->add_flag_callback(
+            "--verbose", [] { setVerbose(true); },
+            "show the libraries' notices too (OpenSceneGraph, GDAL); without it only warnings and errors")
+        ->group(kGroupOptions)
+        ->trigger_on_parse();
 }
 
 CLI::App* CommandLine::command(const std::string& name, const std::string& usage, const std::string& summary,

@@ -5,6 +5,8 @@
 // Each top-level city object becomes a feature (a BuildingPart or BridgePart a nested one),
 // typed through osgLoA::CityObjectTypes; thematic surfaces, openings and installations are drawn
 // with their object, one drawable per surface type and appearance, named after the surface type.
+#include "CityGmlPrescan.h"
+
 #include <osgLoA/semantics/CityObjectTypes>
 #include <osgLoA/semantics/Feature>
 #include <osgLoA/semantics/FeatureIndex>
@@ -293,6 +295,7 @@ public:
         supportsOption("theme=NAME", "appearance theme; default: the first the file names");
         supportsOption("recenter=0",
                        "keep world coordinates (default 1: re-centre on the envelope's centre)");
+        osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA CityGML reader (libcitygml)"; }
 
@@ -330,6 +333,21 @@ public:
                 else if (key == "recenter")
                     s.recenter = value != "0";
             }
+        }
+        // The limits that apply before libcitygml builds anything (CityGmlPrescan.h).
+        try
+        {
+            const osgLoA::InputLimits limits =
+                osgLoA::InputLimits::fromOptions(options ? options->getOptionString() : std::string());
+            citygmlimport::prescan(path, "citygml: " + path, limits);
+        }
+        catch (const osgLoA::InputLimitError& e)
+        {
+            return ReadResult(e.what());
+        }
+        catch (const std::exception& e)
+        {
+            return ReadResult("citygml: " + path + ": " + e.what());
         }
         std::shared_ptr<Logger> logger = std::make_shared<Logger>();
         citygml::ParserParams params;
