@@ -24,6 +24,7 @@
 #include <sstream>
 
 using osgLoA::ModelValidation;
+using osgLoA::ModelStructureError;
 
 namespace
 {
@@ -249,4 +250,56 @@ TEST(ModelValidationTest, LibraryChatterOnlyWithVerbose)
     EXPECT_NE(failed.find("notices from the libraries were hidden; --verbose shows them"), std::string::npos)
         << failed;
     EXPECT_EQ(failed.find("DynamicLibrary"), std::string::npos) << failed;
+}
+
+// A scene graph that is no tree (ModelFuzzer found a model whose group names an ancestor's
+// UniqueID among its children: every visitor recursed until the stack overflowed): a cycle and
+// a graph deeper than MAX_SCENE_DEPTH are refused naming the node; a shared subgraph (a DAG) and
+// a deep but allowed chain pass. Such a file (tests/fuzz/crashes/model/) fails to load, exit 1.
+TEST(ModelValidationTest, CyclesAndExcessiveDepthAreRefused)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    osg::ref_ptr<osg::Group> a = new osg::Group;
+    a->setName("block-a");
+    root->addChild(a.get());
+    osg::ref_ptr<osg::Group> shared = new osg::Group;
+    a->addChild(shared.get());
+    root->addChild(shared.get()); // shared: fine
+    EXPECT_NO_THROW(ModelValidation::validate(*root, "dag.osgt"));
+    shared->addChild(a.get()); // a -> shared -> a
+    try
+    {
+        ModelValidation::validate(*root, "cycle.osgt");
+        ADD_FAILURE() << "a cycle validated";
+    }
+    catch (const ModelStructureError& e)
+    {
+        EXPECT_NE(
+            std::string(e.what()).find("cycle.osgt: the scene graph has a cycle: osg::Group 'block-a' is its "
+                                       "own ancestor"),
+            std::string::npos)
+            << e.what();
+    }
+    shared->removeChild(a.get());
+    const auto chain = [](unsigned levels)
+    {
+        osg::ref_ptr<osg::Group> top = new osg::Group;
+        osg::Group* g = top.get();
+        for (unsigned i = 1; i < levels; ++i)
+        {
+            osg::ref_ptr<osg::Group> c = new osg::Group;
+            g->addChild(c.get());
+            g = c.get();
+        }
+        return top;
+    };
+    EXPECT_NO_THROW(ModelValidation::validate(*chain(ModelValidation::MAX_SCENE_DEPTH), "deep.osgt"));
+    EXPECT_THROW(ModelValidation::validate(*chain(ModelValidation::MAX_SCENE_DEPTH + 1), "deeper.osgt"),
+                 ModelStructureError);
+    std::string out;
+    const std::string found =
+        std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/model/cycle-group-names-its-ancestor.osgt";
+    EXPECT_EQ(loatest::run("'" + std::string(LOA_CLASSIFY_EXE) + "' '" + found + "'", out), 1) << out;
+    EXPECT_NE(out.find("the scene graph has a cycle: osg::Group 'block-a' is its own ancestor"), std::string::npos)
+        << out;
 }

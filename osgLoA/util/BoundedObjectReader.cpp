@@ -131,9 +131,20 @@ public:
     }
     void readCharArray(char* s, unsigned int size) override
     {
-        if (size > remaining())
-            malformed(at() + ": an array of " + std::to_string(size) + " bytes, with " +
-                      std::to_string(remaining()) + " left in the data");
+        // OSG has allocated the array already (InputStream::readImage: new char[size], then this
+        // read), and only takes ownership of it after this call: throwing here would leak it.
+        // So the bytes there are read, the rest left as it is, and the next read throws, once
+        // OSG's image owns the array and unwinding frees it. (Untouched, the array's pages
+        // cost no memory.)
+        const std::uint64_t left = remaining();
+        if (size > left)
+        {
+            const std::string problem = at() + ": an array of " + std::to_string(size) + " bytes, with " +
+                                        std::to_string(left) + " left in the data";
+            if (left > 0) get(s, static_cast<std::size_t>(left), "an array");
+            _truncated = problem;
+            return;
+        }
         if (size > 0) get(s, size, "an array");
     }
     void readWrappedString(std::string& s) override { readString(s); }
@@ -153,6 +164,7 @@ private:
         std::uint64_t begin, size;
     };
     std::vector<Block> _blocks;
+    std::string _truncated; ///< an array ran past the end: the next read fails with this
     const std::istream* _sized = nullptr;
     std::uint64_t _size = 0;
 
@@ -178,6 +190,7 @@ private:
     std::string at() { return "byte " + std::to_string(position()); }
     void get(void* p, std::size_t n, const char* what)
     {
+        if (!_truncated.empty()) malformed(_truncated);
         if (n > remaining()) malformed(at() + ": the data ends inside " + what);
         _in->read(static_cast<char*>(p), static_cast<std::streamsize>(n));
         if (_in->gcount() != static_cast<std::streamsize>(n))
@@ -198,17 +211,47 @@ std::string streamError(osgDB::InputStream& is)
     return e->getError() + (where.empty() ? std::string() : " (at " + where + ")");
 }
 
+osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode);
+
 osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Options* options, bool needNode)
 {
     std::uint32_t low = 0, high = 0;
     std::memcpy(&low, data.data(), 4);
     std::memcpy(&high, data.data() + 4, 4);
     const bool swap = !(low == kHeaderLow && high == kHeaderHigh);
+    // The content type word: OSG casts it to its ReadType enum unchecked (undefined behaviour
+    // for a value outside it; ScenarioFileFuzzer found 16129).
+    std::uint32_t type32 = 0;
+    if (data.size() < 12) malformed("an OSG binary file cut short in its header");
+    std::memcpy(&type32, data.data() + 8, 4);
+    if (swap) type32 = swapped(type32);
+    if (type32 > osgDB::InputStream::READ_OBJECT)
+        malformed("an OSG binary file of unknown content type " + std::to_string(type32));
     std::istringstream in(data);
     in.seekg(8);
     osg::ref_ptr<BoundedBinaryIterator> it = new BoundedBinaryIterator(&in, swap);
     osgDB::InputStream is(options);
-    const osgDB::InputStream::ReadType type = is.start(it.get());
+    try
+    {
+        return readBinaryStream(is, *it, needNode);
+    }
+    catch (const MalformedFileError&)
+    {
+        throw;
+    }
+    catch (const std::bad_alloc&)
+    {
+        malformed("it states a size larger than this machine can hold");
+    }
+    catch (const std::exception& e)
+    {
+        malformed(std::string("OSG's reader failed on it (") + e.what() + ")");
+    }
+}
+
+osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode)
+{
+    const osgDB::InputStream::ReadType type = is.start(&it);
     if (const std::string e = streamError(is); !e.empty()) malformed(e);
     if (type == osgDB::InputStream::READ_UNKNOWN) malformed("an OSG binary file of unknown content type");
     if (needNode && type != osgDB::InputStream::READ_SCENE && type != osgDB::InputStream::READ_OBJECT)
@@ -239,6 +282,20 @@ osg::ref_ptr<osg::Object> readAscii(const std::string& data, const osgDB::Option
     {
         malformed("the text ends before its objects do (a value or a list entry is missing, or a value does "
                   "not read as its type)");
+    }
+    catch (const MalformedFileError&)
+    {
+        throw;
+    }
+    catch (const std::bad_alloc&)
+    {
+        malformed("it states a size larger than this machine can hold");
+    }
+    catch (const std::exception& e)
+    {
+        // OSG's readers index with at() on counts the file states (an image's level count of 0
+        // made InputStream::readImage throw std::out_of_range; ModelFuzzer found it).
+        malformed(std::string("OSG's reader failed on it (") + e.what() + ")");
     }
     if (!rr.success() || !rr.getObject())
         malformed(rr.message().empty() ? std::string("OSG's text reader returned nothing") : rr.message());
@@ -347,12 +404,17 @@ osg::ref_ptr<osg::Object> BoundedObjectReader::readCheckedObject(const std::stri
     return readObject(data, options);
 }
 
+osg::ref_ptr<osg::Node> BoundedObjectReader::readCheckedNode(const std::string& data,
+                                                             const osgDB::Options* options)
+{
+    checkStructure(data);
+    return readNode(data, options);
+}
+
 osg::ref_ptr<osg::Node> BoundedObjectReader::readNodeFile(const std::string& path,
                                                           const osgDB::Options* options)
 {
-    const std::string data = fileData(path);
-    checkStructure(data);
-    return readNode(data, optionsFor(path, options).get());
+    return readCheckedNode(fileData(path), optionsFor(path, options).get());
 }
 
 osg::ref_ptr<osg::Object> BoundedObjectReader::readObjectFile(const std::string& path,

@@ -12,6 +12,7 @@
 #include <malloc.h>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace osgLoA
 {
@@ -163,8 +164,62 @@ private:
 };
 } // namespace
 
+namespace
+{
+std::string nodeLabel(const osg::Node& n)
+{
+    return std::string(n.libraryName()) + "::" + n.className() + (n.getName().empty() ? std::string() : " '" + n.getName() + "'");
+}
+
+/** Depth-first over groups' children with an explicit stack: a child already on the stack is a
+ *  cycle; a stack deeper than the limit is refused. A node reached again by another path (a
+ *  shared subgraph) is not entered twice. */
+void checkStructure(osg::Node& scene, const std::string& source)
+{
+    struct Frame
+    {
+        osg::Group* group;
+        unsigned next;
+    };
+    std::unordered_map<const osg::Node*, char> state; // 1 on the stack, 2 done
+    std::vector<Frame> stack;
+    const auto enter = [&](osg::Node& n)
+    {
+        state[&n] = 1;
+        if (stack.size() >= ModelValidation::MAX_SCENE_DEPTH)
+            throw ModelStructureError(source + ": the scene graph is deeper than " +
+                                      std::to_string(ModelValidation::MAX_SCENE_DEPTH) + " levels (at " +
+                                      nodeLabel(n) + ")");
+        if (osg::Group* g = n.asGroup())
+            stack.push_back({g, 0});
+        else
+            state[&n] = 2;
+    };
+    enter(scene);
+    while (!stack.empty())
+    {
+        Frame& f = stack.back();
+        if (f.next >= f.group->getNumChildren())
+        {
+            state[f.group] = 2;
+            stack.pop_back();
+            continue;
+        }
+        osg::Node* child = f.group->getChild(f.next++);
+        if (!child) continue;
+        const auto it = state.find(child);
+        if (it == state.end())
+            enter(*child);
+        else if (it->second == 1)
+            throw ModelStructureError(source + ": the scene graph has a cycle: " + nodeLabel(*child) +
+                                      " is its own ancestor");
+    }
+}
+} // namespace
+
 ModelValidation ModelValidation::validate(osg::Node& scene, const std::string& source)
 {
+    checkStructure(scene, source);
     ModelValidation result;
     Validator v(result, source);
     scene.accept(v);

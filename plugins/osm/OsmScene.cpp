@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -403,6 +404,7 @@ public:
     osg::ref_ptr<osg::Group> build(std::vector<OsmObject>& objects)
     {
         std::vector<Item> items = classify(objects);
+        dropInvalidCoordinates(items);
         if (items.empty())
             throw std::runtime_error(
                 "no supported objects (buildings, roads, water, green areas, trees) in the "
@@ -528,6 +530,34 @@ private:
         return items;
     }
 
+    /** An object with a coordinate that is not finite, or a longitude outside [-180, 180] or a
+     *  latitude outside [-90, 90], is left out with a warning naming it (OSM XML can say
+     *  lat="nan"; GDAL hands it over as it is, and one such point made the projection fail for
+     *  the whole file or put infinities in the scene). */
+    void dropInvalidCoordinates(std::vector<Item>& items)
+    {
+        std::vector<Item> kept;
+        for (Item& it : items)
+        {
+            bool valid = true;
+            osg::Vec2d bad;
+            std::vector<Item> one{it};
+            forEachPoint(one,
+                         [&](osg::Vec2d& p)
+                         {
+                             if (valid && !(std::isfinite(p.x()) && std::isfinite(p.y()) &&
+                                            std::fabs(p.x()) <= 180.0 && std::fabs(p.y()) <= 90.0))
+                                 valid = false, bad = p;
+                         });
+            if (valid)
+                kept.push_back(it);
+            else
+                OSG_WARN << "osm: " << it.object->sourceId << ": coordinate (" << bad.x() << ", " << bad.y()
+                         << ") is no longitude and latitude; the object is left out" << std::endl;
+        }
+        items.swap(kept);
+    }
+
     void forEachPoint(std::vector<Item>& items, const std::function<void(osg::Vec2d&)>& fn)
     {
         for (Item& it : items)
@@ -567,7 +597,19 @@ private:
         char* proj4 = nullptr;
         if (_local.exportToProj4(&proj4) == OGRERR_NONE && proj4) _crs = proj4;
         CPLFree(proj4);
-        std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&wgs84, &_local));
+        // The operation is given as the PROJ pipeline it is, so that GDAL does not search PROJ's
+        // database for one on every import (about 40 ms each: most of an import of a small file).
+        // GDAL hands it coordinates in the CRS's authority axis order (WGS84: latitude first).
+        char pipeline[512];
+        std::snprintf(
+            pipeline, sizeof pipeline,
+            "+proj=pipeline +step +proj=axisswap +order=2,1 +step +proj=unitconvert +xy_in=deg +xy_out=rad "
+            "+step +proj=tmerc +lat_0=%.17g +lon_0=%.17g +k=1 +x_0=0 +y_0=0 +ellps=WGS84",
+            _lat0, _lon0);
+        OGRCoordinateTransformationOptions operation;
+        operation.SetCoordinateOperation(pipeline, false);
+        std::unique_ptr<OGRCoordinateTransformation> ct(
+            OGRCreateCoordinateTransformation(&wgs84, &_local, operation));
         if (!ct)
             throw std::runtime_error("cannot create the WGS84 -> local transverse Mercator transformation");
         bool ok = true;

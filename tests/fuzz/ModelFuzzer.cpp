@@ -1,6 +1,7 @@
 // libFuzzer target: arbitrary bytes as a model file in OSG's native formats (.osgt, .osgb), read
 // the way every tool and the .loa plugin read models (issue 22 items 2, 3, 5): by
-// BoundedObjectReader, then repaired by ModelValidation. Then what the tools do with a model
+// BoundedObjectReader (the text's structure checked first), then checked and repaired by
+// ModelValidation (a cycle or a graph too deep is refused). Then what the tools do with a model
 // before drawing it: the bound (must be finite), classification with the default rules, and
 // the image paths of the texture tools: each texture image hashed for the filter cache
 // (FilterCache::imageHash, which read past a lying image's buffer once) and its colour table
@@ -57,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     osg::ref_ptr<osg::Node> node;
     try
     {
-        node = osgLoA::BoundedObjectReader::readNode(std::string(reinterpret_cast<const char*>(data), size),
+        node = osgLoA::BoundedObjectReader::readCheckedNode(std::string(reinterpret_cast<const char*>(data), size),
                                                      options.get());
     }
     catch (const osgLoA::MalformedFileError& e)
@@ -66,7 +67,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     if (!node) fuzz::fail(kTarget, "readNode returned no node and no error");
-    osgLoA::ModelValidation::validate(*node, "fuzz.osgt");
+    try
+    {
+        osgLoA::ModelValidation::validate(*node, "fuzz.osgt");
+    }
+    catch (const osgLoA::ModelStructureError&)
+    {
+        return 0; // a cycle or a graph too deep: refused, as the tools refuse it
+    }
     fuzz::requireFiniteBound(kTarget, *node);
 
     osgLoA::FeatureClassifier(rules.get()).classify(*node);
