@@ -64,8 +64,24 @@ public:
     void readUChar(unsigned char& c) override { get(&c, 1, "a character"); }
     void readShort(short& s) override { number(&s, sizeof s, "a short"); }
     void readUShort(unsigned short& s) override { number(&s, sizeof s, "a short"); }
-    void readInt(int& i) override { number(&i, sizeof i, "an integer"); }
-    void readUInt(unsigned int& i) override { number(&i, sizeof i, "an integer"); }
+    void readInt(int& i) override
+    {
+        number(&i, sizeof i, "an integer");
+        _count = i < 0 ? 0 : static_cast<std::uint64_t>(i);
+    }
+    void readUInt(unsigned int& i) override
+    {
+        const bool afterArray = _afterArray;
+        number(&i, sizeof i, "an integer");
+        _count = i;
+        // InputStream::readImage reads an image's data (readCharArray), then the number of its
+        // mipmap levels, and value-initializes a vector of that many 4-byte offsets before it
+        // reads one (a 1.4 kB model made it clear 16 GB; ModelFuzzer found it). Each offset is
+        // 4 bytes of the file: more than the bytes left is a lie.
+        if (afterArray && std::uint64_t(i) * 4 > remaining())
+            malformed(at() + ": " + std::to_string(i) + " mipmap levels stated, with " +
+                      std::to_string(remaining()) + " bytes left in the data");
+    }
     void readLong(long& l) override
     {
         std::int32_t v = 0; // 4 bytes in the file, whatever a long is here
@@ -83,7 +99,7 @@ public:
     void readString(std::string& s) override
     {
         int size = 0;
-        readInt(size);
+        number(&size, sizeof size, "an integer");
         if (size < 0) malformed(at() + ": a string of negative length " + std::to_string(size));
         if (static_cast<std::uint64_t>(size) > remaining())
             malformed(at() + ": a string of " + std::to_string(size) + " bytes, with " +
@@ -107,6 +123,8 @@ public:
     }
     void readMark(osgDB::ObjectMark& mark) override
     {
+        const std::uint64_t count = _count;
+        _count = kNoCount;
         if (!_supportBinaryBrackets) return;
         if (mark._name == "{")
         {
@@ -124,6 +142,13 @@ public:
             if (size > remaining() + (position() - begin))
                 malformed(at() + ": a block of " + std::to_string(size) + " bytes, with " +
                           std::to_string(remaining()) + " left in the data");
+            // A count read just before a block is the number of its entries (OSG writes
+            // "count {" for arrays and lists), each at least a byte: a count beyond the block's
+            // size is a lie, and OSG would resize an array to it before reading a byte of it (a
+            // 1.4 kB model made it allocate and clear 2 GB; ModelFuzzer found it).
+            if (count != kNoCount && count > size)
+                malformed(at() + ": " + std::to_string(count) + " entries stated for a block of " +
+                          std::to_string(size) + " bytes");
             _blocks.push_back({begin, size});
         }
         else if (mark._name == "}" && !_blocks.empty())
@@ -146,6 +171,7 @@ public:
             return;
         }
         if (size > 0) get(s, size, "an array");
+        _afterArray = true;
     }
     void readWrappedString(std::string& s) override { readString(s); }
     void advanceToCurrentEndBracket() override
@@ -165,6 +191,9 @@ private:
     };
     std::vector<Block> _blocks;
     std::string _truncated; ///< an array ran past the end: the next read fails with this
+    static constexpr std::uint64_t kNoCount = ~std::uint64_t(0);
+    std::uint64_t _count = kNoCount; ///< the integer of the last read, if it was readInt/readUInt
+    bool _afterArray = false;        ///< the last read was readCharArray's
     const std::istream* _sized = nullptr;
     std::uint64_t _size = 0;
 
@@ -190,6 +219,8 @@ private:
     std::string at() { return "byte " + std::to_string(position()); }
     void get(void* p, std::size_t n, const char* what)
     {
+        _count = kNoCount; // only the read just before a block counts (readInt/readUInt set it after)
+        _afterArray = false;
         if (!_truncated.empty()) malformed(_truncated);
         if (n > remaining()) malformed(at() + ": the data ends inside " + what);
         _in->read(static_cast<char*>(p), static_cast<std::streamsize>(n));
@@ -209,6 +240,35 @@ std::string streamError(osgDB::InputStream& is)
     if (!e) return std::string();
     const std::string where = e->getField();
     return e->getError() + (where.empty() ? std::string() : " (at " + where + ")");
+}
+
+/** Runs an OSG read, mapping what escapes it to MalformedFileError: a failed read of the
+ *  throwing text stream; std::bad_alloc for a size the data states; anything else OSG throws
+ *  (its readers index with at() on counts the file states: an image of 0 levels made
+ *  InputStream::readImage throw std::out_of_range, which ModelFuzzer found). */
+template <class Read> auto guarded(const Read& read) -> decltype(read())
+{
+    try
+    {
+        return read();
+    }
+    catch (const std::ios_base::failure&)
+    {
+        malformed("the text ends before its objects do (a value or a list entry is missing, or a value does "
+                  "not read as its type)");
+    }
+    catch (const MalformedFileError&)
+    {
+        throw;
+    }
+    catch (const std::bad_alloc&)
+    {
+        malformed("it states a size larger than this machine can hold");
+    }
+    catch (const std::exception& e)
+    {
+        malformed(std::string("OSG's reader failed on it (") + e.what() + ")");
+    }
 }
 
 osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode);
@@ -231,22 +291,7 @@ osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Optio
     in.seekg(8);
     osg::ref_ptr<BoundedBinaryIterator> it = new BoundedBinaryIterator(&in, swap);
     osgDB::InputStream is(options);
-    try
-    {
-        return readBinaryStream(is, *it, needNode);
-    }
-    catch (const MalformedFileError&)
-    {
-        throw;
-    }
-    catch (const std::bad_alloc&)
-    {
-        malformed("it states a size larger than this machine can hold");
-    }
-    catch (const std::exception& e)
-    {
-        malformed(std::string("OSG's reader failed on it (") + e.what() + ")");
-    }
+    return guarded([&] { return readBinaryStream(is, *it, needNode); });
 }
 
 osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode)
@@ -273,30 +318,8 @@ osg::ref_ptr<osg::Object> readAscii(const std::string& data, const osgDB::Option
         options ? static_cast<osgDB::Options*>(options->clone(osg::CopyOp::SHALLOW_COPY))
                 : new osgDB::Options;
     local->setPluginStringData("fileType", "Ascii");
-    osgDB::ReaderWriter::ReadResult rr;
-    try
-    {
-        rr = needNode ? rw->readNode(in, local.get()) : rw->readObject(in, local.get());
-    }
-    catch (const std::ios_base::failure&)
-    {
-        malformed("the text ends before its objects do (a value or a list entry is missing, or a value does "
-                  "not read as its type)");
-    }
-    catch (const MalformedFileError&)
-    {
-        throw;
-    }
-    catch (const std::bad_alloc&)
-    {
-        malformed("it states a size larger than this machine can hold");
-    }
-    catch (const std::exception& e)
-    {
-        // OSG's readers index with at() on counts the file states (an image's level count of 0
-        // made InputStream::readImage throw std::out_of_range; ModelFuzzer found it).
-        malformed(std::string("OSG's reader failed on it (") + e.what() + ")");
-    }
+    osgDB::ReaderWriter::ReadResult rr =
+        guarded([&] { return needNode ? rw->readNode(in, local.get()) : rw->readObject(in, local.get()); });
     if (!rr.success() || !rr.getObject())
         malformed(rr.message().empty() ? std::string("OSG's text reader returned nothing") : rr.message());
     return rr.getObject();

@@ -168,7 +168,8 @@ namespace
 {
 std::string nodeLabel(const osg::Node& n)
 {
-    return std::string(n.libraryName()) + "::" + n.className() + (n.getName().empty() ? std::string() : " '" + n.getName() + "'");
+    return std::string(n.libraryName()) + "::" + n.className() +
+           (n.getName().empty() ? std::string() : " '" + n.getName() + "'");
 }
 
 /** Depth-first over groups' children with an explicit stack: a child already on the stack is a
@@ -211,8 +212,14 @@ void checkStructure(osg::Node& scene, const std::string& source)
         if (it == state.end())
             enter(*child);
         else if (it->second == 1)
+        {
+            // The edge that closes the cycle is cut: its references would keep the graph alive
+            // after the caller lets go of it.
+            const osg::ref_ptr<osg::Node> keep = child;
+            f.group->removeChild(child);
             throw ModelStructureError(source + ": the scene graph has a cycle: " + nodeLabel(*child) +
                                       " is its own ancestor");
+        }
     }
 }
 } // namespace
