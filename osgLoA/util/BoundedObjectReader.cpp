@@ -4,16 +4,21 @@
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Endian>
+#include <osg/Geometry>
 #include <osgDB/FileNameUtils>
 #include <osgDB/InputStream>
+#include <osgDB/ObjectWrapper>
 #include <osgDB/ReaderWriter>
 #include <osgDB/Registry>
+#include <osgDB/Serializer>
 #include <osgDB/StreamOperator>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -271,6 +276,61 @@ template <class Read> auto guarded(const Read& read) -> decltype(read())
     }
 }
 
+/** osg::Geometry's PrimitiveSetList as OSG 3.6.5 reads it (osgDB::VectorSerializer), except
+ *  that an entry that did not read (an unknown class, "NULL") is left out: OSG's keeps it, and
+ *  Geometry::setPrimitiveSetList then dereferences the null entry (SEGV in
+ *  addElementBufferObjectIfRequired; ModelFuzzer found it). The reserve is capped: the count is
+ *  the file's word. */
+class PrimitiveSetListReader : public osgDB::VectorSerializer<osg::Geometry, osg::Geometry::PrimitiveSetList>
+{
+public:
+    PrimitiveSetListReader()
+        : VectorSerializer("PrimitiveSetList", &osg::Geometry::getPrimitiveSetList,
+                           &osg::Geometry::getPrimitiveSetList, &osg::Geometry::setPrimitiveSetList,
+                           osgDB::BaseSerializer::RW_OBJECT, 0)
+    {
+    }
+    bool read(osgDB::InputStream& is, osg::Object& obj) override
+    {
+        osg::Geometry& geometry = static_cast<osg::Geometry&>(obj);
+        unsigned int size = 0;
+        osg::Geometry::PrimitiveSetList list;
+        const bool binary = is.isBinary();
+        if (!binary && !is.matchString(_name)) return true;
+        is >> size;
+        list.reserve(std::min(size, 1u << 16));
+        if (!binary && size > 0) is >> is.BEGIN_BRACKET;
+        for (unsigned int i = 0; i < size; ++i)
+        {
+            osg::ref_ptr<osg::PrimitiveSet> value;
+            is >> value;
+            if (is.getException()) return false;
+            if (value.valid()) list.push_back(value);
+        }
+        if (!binary && size > 0) is >> is.END_BRACKET;
+        if (size > 0) geometry.setPrimitiveSetList(list);
+        return true;
+    }
+};
+
+/** Puts PrimitiveSetListReader in place of OSG's serializer, once per process (the wrapper is
+ *  osgdb_serializers_osg's, loaded by the lookup). Every later read of osg::Geometry uses it. */
+void guardGeometryWrapper()
+{
+    static std::once_flag once;
+    std::call_once(once,
+                   []
+                   {
+                       osgDB::ObjectWrapper* w =
+                           osgDB::Registry::instance()->getObjectWrapperManager()->findWrapper(
+                               "osg::Geometry");
+                       if (!w) return;
+                       for (osg::ref_ptr<osgDB::BaseSerializer>& serializer : w->getSerializerList())
+                           if (serializer.valid() && serializer->getName() == "PrimitiveSetList")
+                               serializer = new PrimitiveSetListReader;
+                   });
+}
+
 osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode);
 
 osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Options* options, bool needNode)
@@ -347,6 +407,7 @@ BoundedObjectReader::Format BoundedObjectReader::formatOf(const std::string& dat
 osg::ref_ptr<osg::Object> BoundedObjectReader::readObject(const std::string& data,
                                                           const osgDB::Options* options)
 {
+    guardGeometryWrapper();
     switch (formatOf(data))
     {
     case Format::Binary:
@@ -363,6 +424,7 @@ osg::ref_ptr<osg::Object> BoundedObjectReader::readObject(const std::string& dat
 
 osg::ref_ptr<osg::Node> BoundedObjectReader::readNode(const std::string& data, const osgDB::Options* options)
 {
+    guardGeometryWrapper();
     osg::ref_ptr<osg::Object> o;
     switch (formatOf(data))
     {

@@ -8,6 +8,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <malloc.h>
 #include <set>
@@ -22,6 +23,31 @@ std::string nameOf(const osg::Object& o, const char* kind)
 {
     return o.getName().empty() ? std::string("an unnamed ") + kind
                                : std::string(kind) + " '" + o.getName() + "'";
+}
+
+/** An array's binding as the number stored: a file can store any number there, and loading a
+ *  value outside osg::Array::Binding is undefined behaviour (UBSan; ModelFuzzer found 32772).
+ *  The member's bytes are copied into an int instead: no enum value is loaded. */
+struct BindingPeek : osg::Array
+{
+    static int of(const osg::Array& a)
+    {
+        static_assert(sizeof(osg::Array::Binding) == sizeof(int), "osg::Array::Binding is an int");
+        int value = 0;
+        std::memcpy(&value, &(a.*(&BindingPeek::_binding)), sizeof value);
+        return value;
+    }
+};
+
+int storedBinding(const osg::Array& a)
+{
+    return BindingPeek::of(a);
+}
+
+bool knownBinding(int b)
+{
+    return b == osg::Array::BIND_UNDEFINED || b == osg::Array::BIND_OFF || b == osg::Array::BIND_OVERALL ||
+           b == osg::Array::BIND_PER_PRIMITIVE_SET || b == osg::Array::BIND_PER_VERTEX;
 }
 
 /** Why geometry cannot be drawn safely, or "". */
@@ -41,10 +67,22 @@ std::string geometryProblem(const osg::Geometry& g)
         arrays.push_back(g.getTexCoordArray(u));
     for (unsigned a = 0; a < g.getNumVertexAttribArrays(); ++a)
         arrays.push_back(g.getVertexAttribArray(a));
+    if (vertices) arrays.push_back(vertices);
     for (const osg::Array* a : arrays)
-        if (a && a->getBinding() == osg::Array::BIND_PER_VERTEX && a->getNumElements() < n)
+        if (a && !knownBinding(storedBinding(*a)))
+            return "an array binding " + std::to_string(storedBinding(*a)) + " that is no binding";
+    if (vertices) arrays.pop_back();
+    for (const osg::Array* a : arrays)
+        if (a && storedBinding(*a) == osg::Array::BIND_PER_VERTEX && a->getNumElements() < n)
             return "a per-vertex array of " + std::to_string(a->getNumElements()) + " elements for " +
                    std::to_string(n) + " vertices";
+    // Texture coordinates that are not finite (the texture tools size their work by the
+    // coordinates' range; ModelFuzzer found a nan).
+    for (unsigned u = 0; u < g.getNumTexCoordArrays(); ++u)
+        if (const auto* t2 = dynamic_cast<const osg::Vec2Array*>(g.getTexCoordArray(u)))
+            for (const osg::Vec2& t : *t2)
+                if (!std::isfinite(t.x()) || !std::isfinite(t.y()))
+                    return "texture coordinates on unit " + std::to_string(u) + " that are not finite";
     for (unsigned i = 0; i < g.getNumPrimitiveSets(); ++i)
     {
         const osg::PrimitiveSet* p = g.getPrimitiveSet(i);

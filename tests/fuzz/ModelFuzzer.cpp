@@ -24,8 +24,10 @@
 #include "FuzzSupport.h"
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -58,8 +60,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     osg::ref_ptr<osg::Node> node;
     try
     {
-        node = osgLoA::BoundedObjectReader::readCheckedNode(std::string(reinterpret_cast<const char*>(data), size),
-                                                     options.get());
+        node = osgLoA::BoundedObjectReader::readCheckedNode(
+            std::string(reinterpret_cast<const char*>(data), size), options.get());
     }
     catch (const osgLoA::MalformedFileError& e)
     {
@@ -90,7 +92,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         {
         }
     }
-    for (const auto& entry : osgLoA::TextureHistogram::sceneWeights(*node))
+    std::map<const osg::Image*, std::vector<double>> weights;
+    try
+    {
+        weights =
+            osgLoA::TextureHistogram::sceneWeights(*node); // documented: texture coordinates too far apart
+    }
+    catch (const std::invalid_argument&)
+    {
+        return 0;
+    }
+    for (const auto& entry : weights)
     {
         try
         {
