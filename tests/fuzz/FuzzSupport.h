@@ -6,6 +6,8 @@
 
 #include <osgLoA/semantics/Feature>
 
+#include "../support/BoxGeode.h"
+
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/Group>
@@ -42,24 +44,10 @@ inline void requireFiniteBound(const char* target, osg::Node& node)
         fail(target, "the scene's bounding sphere is not finite");
 }
 
-inline osg::ref_ptr<osg::Geode> box(const osg::Vec3& minimum, const osg::Vec3& maximum)
-{
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    for (int i = 0; i < 8; ++i)
-        v->push_back(osg::Vec3(i & 1 ? maximum.x() : minimum.x(), i & 2 ? maximum.y() : minimum.y(),
-                               i & 4 ? maximum.z() : minimum.z()));
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 8));
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
-    return geode;
-}
-
 inline osg::Geode* addFeature(osg::Group& parent, osgLoA::Feature* f, const osg::Vec3& minimum,
                               const osg::Vec3& maximum)
 {
-    osg::ref_ptr<osg::Geode> g = box(minimum, maximum);
+    osg::ref_ptr<osg::Geode> g = loatest::boxGeode(minimum, maximum);
     if (f) osgLoA::Feature::attach(*g, f);
     parent.addChild(g.get());
     return g.get();

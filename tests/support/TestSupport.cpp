@@ -143,20 +143,6 @@ void saveFailure(const std::string& name, const osg::Image& actual, const osg::I
     std::fprintf(stderr, "saved %s/%s-actual.png and -diff.png\n", dir.c_str(), name.c_str());
 }
 
-osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& maximum)
-{
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    for (int i = 0; i < 8; ++i)
-        v->push_back(osg::Vec3(i & 1 ? maximum.x() : minimum.x(), i & 2 ? maximum.y() : minimum.y(),
-                               i & 4 ? maximum.z() : minimum.z()));
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 8));
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    geode->addDrawable(g.get());
-    return geode;
-}
-
 GpuFilterFixture::GpuFilterFixture() : context(new osgLoA::HeadlessContext)
 {
     if (!context->realize() || !context->makeCurrent()) throw std::runtime_error("no EGL context");

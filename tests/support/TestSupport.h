@@ -2,6 +2,8 @@
 #ifndef OSGLOA_TESTS_TESTSUPPORT_H
 #define OSGLOA_TESTS_TESTSUPPORT_H 1
 
+#include "BoxGeode.h"
+
 #include <osgLoA/filtering/GpuFilterEngine>
 #include <osgLoA/render/HeadlessContext>
 
@@ -65,9 +67,7 @@ bool matchesAbstractionGolden(const std::string& name, const osg::Image& actual,
 /** Writes NAME-actual.png and NAME-diff.png beside the build for a failed comparison. */
 void saveFailure(const std::string& name, const osg::Image& actual, const osg::Image* difference);
 
-/** A Geode whose one Geometry holds the 8 corners of the box as points, so that its bound is
- *  exactly the box (scenario tests place features by their boxes). */
-osg::ref_ptr<osg::Geode> boxGeode(const osg::Vec3& minimum, const osg::Vec3& maximum);
+// boxGeode(minimum, maximum): BoxGeode.h.
 
 /** A headless context made current and a GpuFilterEngine on it, for the filter GL tests; the
  *  destructor frees the engine's GL objects and releases the context. Throws std::runtime_error
