@@ -23,45 +23,15 @@
 #include <fstream>
 #include <sstream>
 
-using osgLoA::ModelValidation;
 using osgLoA::ModelStructureError;
+using osgLoA::ModelValidation;
 
-namespace
-{
-osg::ref_ptr<osg::Geometry> triangle(const std::string& name)
-{
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    g->setName(name);
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back({0, 0, 0});
-    v->push_back({1, 0, 0});
-    v->push_back({0, 1, 0});
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
-    return g;
-}
-
-/** A Geode with one textured triangle whose 4x4 image is written inline. */
-std::string writeTexturedModel(const std::string& path)
-{
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
-    osg::ref_ptr<osg::Geometry> g = triangle("tri");
-    osg::ref_ptr<osg::Image> image = new osg::Image;
-    image->allocateImage(4, 4, 1, GL_RGBA, GL_UNSIGNED_BYTE);
-    std::memset(image->data(), 200, 64);
-    image->setFileName("tex.png");
-    g->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(image.get()));
-    geode->addDrawable(g.get());
-    osg::ref_ptr<osgDB::Options> o = new osgDB::Options("WriteImageHint=IncludeData");
-    EXPECT_TRUE(osgDB::writeNodeFile(*geode, path, o.get()));
-    return loatest::fileBytes(path);
-}
-} // namespace
+using loatest::triangle;
 
 TEST(ModelValidationTest, ImagesThatStateMoreThanTheyHoldAreEmptied)
 {
     const std::string dir = loatest::freshDirectory("ModelValidationImages");
-    const std::string text = writeTexturedModel(dir + "/ok.osgt");
+    const std::string text = loatest::writeTexturedTriangle(dir + "/ok.osgt");
     osg::ref_ptr<osg::Node> ok = osgDB::readRefNodeFile(dir + "/ok.osgt");
     ASSERT_TRUE(ok.valid());
     EXPECT_TRUE(ModelValidation::validate(*ok, "ok.osgt").emptiedImages.empty());
@@ -107,6 +77,15 @@ TEST(ModelValidationTest, GeometryPastItsArraysIsDroppedWithItsName)
     osg::ref_ptr<osg::Geometry> nan = triangle("nan");
     (*static_cast<osg::Vec3Array*>(nan->getVertexArray()))[1].x() = std::nanf("");
     geode->addDrawable(nan.get());
+    // Finite but beyond MAX_COORDINATE: the bounding sphere overflowed to infinity (ModelFuzzer),
+    // in a double array too.
+    osg::ref_ptr<osg::Geometry> huge = triangle("huge");
+    osg::ref_ptr<osg::Vec3dArray> far = new osg::Vec3dArray;
+    far->push_back({0, 0, 0});
+    far->push_back({3e38, 0, 0});
+    far->push_back({0, -3e38, 0});
+    huge->setVertexArray(far.get());
+    geode->addDrawable(huge.get());
 
     // Through a binary file, as a bit-flipped .osgb arrives.
     const std::string dir = loatest::freshDirectory("ModelValidationGeometry");
@@ -114,9 +93,10 @@ TEST(ModelValidationTest, GeometryPastItsArraysIsDroppedWithItsName)
     osg::ref_ptr<osg::Node> n = osgDB::readRefNodeFile(dir + "/bad.osgb");
     ASSERT_TRUE(n.valid());
     const ModelValidation v = ModelValidation::validate(*n, "bad.osgb");
-    ASSERT_EQ(v.removedDrawables.size(), 4u);
-    const std::string all = v.removedDrawables[0] + "|" + v.removedDrawables[1] + "|" +
-                            v.removedDrawables[2] + "|" + v.removedDrawables[3];
+    ASSERT_EQ(v.removedDrawables.size(), 5u);
+    std::string all;
+    for (const std::string& r : v.removedDrawables)
+        all += r + "|";
     EXPECT_NE(all.find("drawable 'flipped' in Geode 'block': index 40000 past 3 vertices"), std::string::npos)
         << all;
     EXPECT_NE(all.find("drawable 'ranges' in Geode 'block': DrawArrays 1+3 past 3 vertices"),
@@ -126,7 +106,12 @@ TEST(ModelValidationTest, GeometryPastItsArraysIsDroppedWithItsName)
         all.find("drawable 'normals' in Geode 'block': a per-vertex array of 1 elements for 3 vertices"),
         std::string::npos)
         << all;
-    EXPECT_NE(all.find("drawable 'nan' in Geode 'block': a vertex that is not finite"), std::string::npos)
+    EXPECT_NE(
+        all.find("drawable 'nan' in Geode 'block': a vertex coordinate (nan) that is not finite or beyond "
+                 "1e15"),
+        std::string::npos)
+        << all;
+    EXPECT_NE(all.find("drawable 'huge' in Geode 'block': a vertex coordinate (3000000"), std::string::npos)
         << all;
     ASSERT_EQ(n->asGeode()->getNumDrawables(), 1u);
     EXPECT_EQ(n->asGeode()->getDrawable(0)->getName(), "good");
@@ -143,7 +128,7 @@ TEST(ModelValidationTest, GeometryPastItsArraysIsDroppedWithItsName)
 TEST(ModelValidationTest, TruncatedTextModelsAreRefusedAtOnce)
 {
     const std::string dir = loatest::freshDirectory("ModelValidationTruncated");
-    const std::string text = writeTexturedModel(dir + "/whole.osgt");
+    const std::string text = loatest::writeTexturedTriangle(dir + "/whole.osgt");
     EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/whole.osgt"), "");
     std::ofstream(dir + "/half.osgt") << text.substr(0, text.size() / 2);
     EXPECT_EQ(ModelValidation::checkOsgtStructure(dir + "/half.osgt"),
@@ -300,6 +285,7 @@ TEST(ModelValidationTest, CyclesAndExcessiveDepthAreRefused)
     const std::string found =
         std::string(LOA_SOURCE_DIR) + "/tests/fuzz/crashes/model/cycle-group-names-its-ancestor.osgt";
     EXPECT_EQ(loatest::run("'" + std::string(LOA_CLASSIFY_EXE) + "' '" + found + "'", out), 1) << out;
-    EXPECT_NE(out.find("the scene graph has a cycle: osg::Group 'block-a' is its own ancestor"), std::string::npos)
+    EXPECT_NE(out.find("the scene graph has a cycle: osg::Group 'block-a' is its own ancestor"),
+              std::string::npos)
         << out;
 }

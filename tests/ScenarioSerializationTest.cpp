@@ -696,15 +696,16 @@ TEST(ScenarioSerializationTest, MalformedValuesInTextFilesNameTheProblem)
         expectErrorSaying(path, c.problem);
     }
     // Counts under the limits but above the lists' lengths: the read stops at the first entry
-    // that is not there, or at the end of the text (BoundedObjectReader), quickly, not after the
-    // count. (OSG's text reader takes any word for a number, "}" for 0, so a count only a little
-    // too large reads the words after the list as entries until the text ends.)
+    // that is not there (BoundedObjectReader reads text strictly: a word that is not an entry's
+    // is an error), or at once when the count is more than the bytes after it could hold.
+    // (OSG's own text reader takes any word for a number, "}" for 0, so a count only a little
+    // too large read the words after the list as entries until the text ended.)
     writeBytes(dir + "/count-plus-one.osgt", replaced(text, "Configurations 4 {", "Configurations 5 {"));
-    expectErrorSaying(dir + "/count-plus-one.osgt", "the text ends before its objects do");
+    expectErrorSaying(dir + "/count-plus-one.osgt", "where '{' belongs");
     writeBytes(dir + "/count-at-limit.osgt", replaced(text, "Configurations 4 {", "Configurations 65536 {"));
-    expectErrorSaying(dir + "/count-at-limit.osgt", "the text ends before its objects do");
+    expectErrorSaying(dir + "/count-at-limit.osgt", "65536 entries stated, with ");
     writeBytes(dir + "/vertices-at-limit.osgt", replaced(text, "Vertices 6 {", "Vertices 1048576 {"));
-    expectErrorSaying(dir + "/vertices-at-limit.osgt", "the text ends before its objects do");
+    expectErrorSaying(dir + "/vertices-at-limit.osgt", "1048576 entries stated, with ");
 
     // The same checks read .osgx.
     ScenarioLibrary::writeFile(*absoluteRoute(), dir + "/route.osgx");

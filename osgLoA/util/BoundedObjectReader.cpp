@@ -3,8 +3,11 @@
 
 #include <osgLoA/util/ModelValidation>
 
+#include "BoundedInputIterator.h"
+
 #include <osg/Endian>
 #include <osg/Geometry>
+#include <osg/Group>
 #include <osgDB/FileNameUtils>
 #include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
@@ -14,18 +17,24 @@
 #include <osgDB/StreamOperator>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <vector>
 
+#include <pthread.h>
 #include <sys/stat.h>
 
 namespace osgLoA
 {
+static_assert(BoundedObjectReader::MAX_NESTING == 2 * ModelValidation::MAX_SCENE_DEPTH + 256,
+              "two '{' per scene level, and room for a leaf's contents");
 namespace
 {
 // OSG's binary magic number (osgDB/Serializer's OSG_HEADER_LOW and _HIGH).
@@ -41,203 +50,6 @@ std::uint32_t swapped(std::uint32_t v)
 {
     throw MalformedFileError(what);
 }
-
-/** OSG's binary input iterator (osgdb_osg's BinaryInputIterator, same reads in the same order,
- *  byte swap and block brackets included) with every read checked: a size is compared with the
- *  bytes left before anything is allocated, and a read that comes back short throws. The
- *  stream may be replaced under it (InputStream::decompress hands it the inflated data), so the
- *  bytes left are measured on the stream of the moment. */
-class BoundedBinaryIterator : public osgDB::InputIterator
-{
-public:
-    BoundedBinaryIterator(std::istream* in, bool byteSwap)
-    {
-        _in = in;
-        setByteSwap(byteSwap ? 1 : 0);
-    }
-
-    bool isBinary() const override { return true; }
-
-    void readBool(bool& b) override
-    {
-        char c = 0;
-        get(&c, 1, "a boolean");
-        b = c != 0;
-    }
-    void readChar(char& c) override { get(&c, 1, "a character"); }
-    void readSChar(signed char& c) override { get(&c, 1, "a character"); }
-    void readUChar(unsigned char& c) override { get(&c, 1, "a character"); }
-    void readShort(short& s) override { number(&s, sizeof s, "a short"); }
-    void readUShort(unsigned short& s) override { number(&s, sizeof s, "a short"); }
-    void readInt(int& i) override
-    {
-        number(&i, sizeof i, "an integer");
-        _count = i < 0 ? 0 : static_cast<std::uint64_t>(i);
-    }
-    void readUInt(unsigned int& i) override
-    {
-        const bool afterArray = _afterArray;
-        number(&i, sizeof i, "an integer");
-        _count = i;
-        // InputStream::readImage reads an image's data (readCharArray), then the number of its
-        // mipmap levels, and value-initializes a vector of that many 4-byte offsets before it
-        // reads one (a 1.4 kB model made it clear 16 GB; ModelFuzzer found it). Each offset is
-        // 4 bytes of the file: more than the bytes left is a lie.
-        if (afterArray && std::uint64_t(i) * 4 > remaining())
-            malformed(at() + ": " + std::to_string(i) + " mipmap levels stated, with " +
-                      std::to_string(remaining()) + " bytes left in the data");
-    }
-    void readLong(long& l) override
-    {
-        std::int32_t v = 0; // 4 bytes in the file, whatever a long is here
-        number(&v, sizeof v, "an integer");
-        l = v;
-    }
-    void readULong(unsigned long& l) override
-    {
-        std::uint32_t v = 0;
-        number(&v, sizeof v, "an integer");
-        l = v;
-    }
-    void readFloat(float& f) override { number(&f, sizeof f, "a number"); }
-    void readDouble(double& d) override { number(&d, sizeof d, "a number"); }
-    void readString(std::string& s) override
-    {
-        int size = 0;
-        number(&size, sizeof size, "an integer");
-        if (size < 0) malformed(at() + ": a string of negative length " + std::to_string(size));
-        if (static_cast<std::uint64_t>(size) > remaining())
-            malformed(at() + ": a string of " + std::to_string(size) + " bytes, with " +
-                      std::to_string(remaining()) + " left in the data");
-        s.resize(static_cast<std::size_t>(size));
-        if (size > 0) get(&s[0], static_cast<std::size_t>(size), "a string");
-    }
-    void readStream(std::istream& (*)(std::istream&)) override {}
-    void readBase(std::ios_base& (*)(std::ios_base&)) override {}
-    void readGLenum(osgDB::ObjectGLenum& value) override
-    {
-        std::uint32_t e = 0;
-        number(&e, sizeof e, "a GL enum");
-        value.set(e);
-    }
-    void readProperty(osgDB::ObjectProperty& prop) override
-    {
-        int value = 0;
-        if (prop._mapProperty) number(&value, sizeof value, "an enum");
-        prop.set(value);
-    }
-    void readMark(osgDB::ObjectMark& mark) override
-    {
-        const std::uint64_t count = _count;
-        _count = kNoCount;
-        if (!_supportBinaryBrackets) return;
-        if (mark._name == "{")
-        {
-            const std::uint64_t begin = position();
-            std::uint64_t size = 0;
-            if (getInputStream() && getInputStream()->getFileVersion() > 148)
-                number(&size, sizeof size, "a block size");
-            else
-            {
-                std::int32_t s32 = 0;
-                number(&s32, sizeof s32, "a block size");
-                if (s32 < 0) malformed(at() + ": a block of negative size");
-                size = static_cast<std::uint64_t>(s32);
-            }
-            if (size > remaining() + (position() - begin))
-                malformed(at() + ": a block of " + std::to_string(size) + " bytes, with " +
-                          std::to_string(remaining()) + " left in the data");
-            // A count read just before a block is the number of its entries (OSG writes
-            // "count {" for arrays and lists), each at least a byte: a count beyond the block's
-            // size is a lie, and OSG would resize an array to it before reading a byte of it (a
-            // 1.4 kB model made it allocate and clear 2 GB; ModelFuzzer found it).
-            if (count != kNoCount && count > size)
-                malformed(at() + ": " + std::to_string(count) + " entries stated for a block of " +
-                          std::to_string(size) + " bytes");
-            _blocks.push_back({begin, size});
-        }
-        else if (mark._name == "}" && !_blocks.empty())
-            _blocks.pop_back();
-    }
-    void readCharArray(char* s, unsigned int size) override
-    {
-        // OSG has allocated the array already (InputStream::readImage: new char[size], then this
-        // read), and only takes ownership of it after this call: throwing here would leak it.
-        // So the bytes there are read, the rest left as it is, and the next read throws, once
-        // OSG's image owns the array and unwinding frees it. (Untouched, the array's pages
-        // cost no memory.)
-        const std::uint64_t left = remaining();
-        if (size > left)
-        {
-            const std::string problem = at() + ": an array of " + std::to_string(size) + " bytes, with " +
-                                        std::to_string(left) + " left in the data";
-            if (left > 0) get(s, static_cast<std::size_t>(left), "an array");
-            _truncated = problem;
-            return;
-        }
-        if (size > 0) get(s, size, "an array");
-        _afterArray = true;
-    }
-    void readWrappedString(std::string& s) override { readString(s); }
-    void advanceToCurrentEndBracket() override
-    {
-        if (!_supportBinaryBrackets || _blocks.empty()) return;
-        const Block b = _blocks.back();
-        _blocks.pop_back();
-        _in->clear();
-        _in->seekg(static_cast<std::streamoff>(b.begin + b.size));
-        if (!*_in) malformed(at() + ": a block ends past the end of the data");
-    }
-
-private:
-    struct Block
-    {
-        std::uint64_t begin, size;
-    };
-    std::vector<Block> _blocks;
-    std::string _truncated; ///< an array ran past the end: the next read fails with this
-    static constexpr std::uint64_t kNoCount = ~std::uint64_t(0);
-    std::uint64_t _count = kNoCount; ///< the integer of the last read, if it was readInt/readUInt
-    bool _afterArray = false;        ///< the last read was readCharArray's
-    const std::istream* _sized = nullptr;
-    std::uint64_t _size = 0;
-
-    std::uint64_t position()
-    {
-        const std::streamoff p = _in->tellg();
-        if (p < 0) malformed("the data ends early (a read failed)");
-        return static_cast<std::uint64_t>(p);
-    }
-    std::uint64_t remaining()
-    {
-        if (_sized != _in)
-        {
-            const std::streampos here = _in->tellg();
-            _in->seekg(0, std::ios::end);
-            _size = static_cast<std::uint64_t>(static_cast<std::streamoff>(_in->tellg()));
-            _in->seekg(here);
-            _sized = _in;
-        }
-        const std::uint64_t p = position();
-        return p < _size ? _size - p : 0;
-    }
-    std::string at() { return "byte " + std::to_string(position()); }
-    void get(void* p, std::size_t n, const char* what)
-    {
-        _count = kNoCount; // only the read just before a block counts (readInt/readUInt set it after)
-        _afterArray = false;
-        if (!_truncated.empty()) malformed(_truncated);
-        if (n > remaining()) malformed(at() + ": the data ends inside " + what);
-        _in->read(static_cast<char*>(p), static_cast<std::streamsize>(n));
-        if (_in->gcount() != static_cast<std::streamsize>(n))
-            malformed("the data ends inside " + std::string(what));
-    }
-    void number(void* p, std::size_t n, const char* what)
-    {
-        get(p, n, what);
-        if (_byteSwap) osg::swapBytes(static_cast<char*>(p), static_cast<unsigned int>(n));
-    }
-};
 
 std::string streamError(osgDB::InputStream& is)
 {
@@ -313,25 +125,208 @@ public:
     }
 };
 
-/** Puts PrimitiveSetListReader in place of OSG's serializer, once per process (the wrapper is
- *  osgdb_serializers_osg's, loaded by the lookup). Every later read of osg::Geometry uses it. */
-void guardGeometryWrapper()
+using detail::BoundedAsciiIterator;
+using detail::BoundedBinaryIterator;
+using detail::BoundedInputIterator;
+
+/** The read in progress on this thread: its InputStream and our iterator under it. */
+struct CurrentRead
 {
-    static std::once_flag once;
-    std::call_once(once,
-                   []
-                   {
-                       osgDB::ObjectWrapper* w =
-                           osgDB::Registry::instance()->getObjectWrapperManager()->findWrapper(
-                               "osg::Geometry");
-                       if (!w) return;
-                       for (osg::ref_ptr<osgDB::BaseSerializer>& serializer : w->getSerializerList())
-                           if (serializer.valid() && serializer->getName() == "PrimitiveSetList")
-                               serializer = new PrimitiveSetListReader;
-                   });
+    const osgDB::InputStream* stream = nullptr;
+    BoundedInputIterator* iterator = nullptr;
+};
+thread_local CurrentRead tCurrentRead;
+
+/** A vector property (osgDB::VectorSerializer, IsAVectorSerializer: every osg::Array's data,
+ *  DrawElements' indices) read as OSG reads it, after the count it states is checked: OSG reads
+ *  the count and reserves room for it before it reads an entry, with no block around them in a
+ *  binary file (a 1.4 kB model made it reserve 11.7 GB; ModelFuzzer found it). In a binary read
+ *  of this reader, each entry takes at least min(its size, 4) bytes of the data (a number, a
+ *  string's length, an object's class name). Everything else is the wrapped serializer's; in
+ *  text, the count is checked before OSG parses (checkTextBounds), and reads by other readers
+ *  (another InputStream) pass through unchanged. */
+class BoundedVectorSerializer : public osgDB::VectorBaseSerializer
+{
+public:
+    explicit BoundedVectorSerializer(osgDB::VectorBaseSerializer* wrapped)
+        : VectorBaseSerializer(wrapped->getElementType(), wrapped->getElementSize()), _wrapped(wrapped)
+    {
+        setUsage(wrapped->getUsage());
+        // The versions the wrapper reads the property in (protected in BaseSerializer; a
+        // pointer to the member names it through this class).
+        _firstVersion = wrapped->*(&BoundedVectorSerializer::_firstVersion);
+        _lastVersion = wrapped->*(&BoundedVectorSerializer::_lastVersion);
+    }
+
+    bool read(osgDB::InputStream& is, osg::Object& obj) override
+    {
+        BoundedInputIterator* it = tCurrentRead.stream == &is ? tCurrentRead.iterator : nullptr;
+        if (!it) return _wrapped->read(is, obj);
+        it->expectEntries(is.isBinary() ? std::min(std::max(getElementSize(), 1u), 4u) : 1u, getName());
+        const bool ok = _wrapped->read(is, obj);
+        it->clearExpected();
+        return ok;
+    }
+    bool write(osgDB::OutputStream& os, const osg::Object& obj) override { return _wrapped->write(os, obj); }
+    const std::string& getName() const override { return _wrapped->getName(); }
+    bool set(osg::Object& obj, void* value) override { return _wrapped->set(obj, value); }
+    bool get(const osg::Object& obj, void* value) override { return _wrapped->get(obj, value); }
+    osgDB::IntLookup* getIntLookup() override { return _wrapped->getIntLookup(); }
+    unsigned int size(const osg::Object& obj) const override { return _wrapped->size(obj); }
+    void resize(osg::Object& obj, unsigned int n) const override { _wrapped->resize(obj, n); }
+    void reserve(osg::Object& obj, unsigned int n) const override { _wrapped->reserve(obj, n); }
+    void clear(osg::Object& obj) const override { _wrapped->clear(obj); }
+    void addElement(osg::Object& obj, void* p) const override { _wrapped->addElement(obj, p); }
+    void insertElement(osg::Object& obj, unsigned int i, void* p) const override
+    {
+        _wrapped->insertElement(obj, i, p);
+    }
+    void setElement(osg::Object& obj, unsigned int i, void* p) const override
+    {
+        _wrapped->setElement(obj, i, p);
+    }
+    void* getElement(osg::Object& obj, unsigned int i) const override { return _wrapped->getElement(obj, i); }
+    const void* getElement(const osg::Object& obj, unsigned int i) const override
+    {
+        return static_cast<const osgDB::VectorBaseSerializer&>(*_wrapped).getElement(obj, i);
+    }
+
+private:
+    osg::ref_ptr<osgDB::VectorBaseSerializer> _wrapped;
+};
+
+/** Puts our serializers in place of OSG's in every wrapper registered so far (the osg ones are
+ *  loaded by the first lookup; those of other libraries when a file first names one of their
+ *  classes, after which the next read covers them): PrimitiveSetListReader for osg::Geometry's
+ *  PrimitiveSetList, BoundedVectorSerializer around every other vector property. Every later
+ *  read, of any reader in the process, uses them; they read valid data as OSG's do. */
+void guardWrappers()
+{
+    static std::mutex mutex;
+    static std::size_t guarded = 0; // the number of wrappers seen last time
+    const std::lock_guard<std::mutex> lock(mutex);
+    osgDB::ObjectWrapperManager* manager = osgDB::Registry::instance()->getObjectWrapperManager();
+    if (guarded == 0) manager->findWrapper("osg::Geometry"); // loads osgdb_serializers_osg
+    osgDB::ObjectWrapperManager::WrapperMap& wrappers = manager->getWrapperMap();
+    if (wrappers.size() == guarded) return;
+    for (auto& entry : wrappers)
+    {
+        if (!entry.second.valid()) continue;
+        for (osg::ref_ptr<osgDB::BaseSerializer>& serializer : entry.second->getSerializerList())
+        {
+            if (!serializer.valid() || dynamic_cast<BoundedVectorSerializer*>(serializer.get()) ||
+                dynamic_cast<PrimitiveSetListReader*>(serializer.get()))
+                continue;
+            if (entry.first.compare(0, 8, "osgLoA::") == 0) continue; // ours check their own limits
+            if (entry.first == "osg::Geometry" && serializer->getName() == "PrimitiveSetList")
+                serializer = new PrimitiveSetListReader;
+            else if (auto* vector = dynamic_cast<osgDB::VectorBaseSerializer*>(serializer.get()))
+                serializer = new BoundedVectorSerializer(vector);
+        }
+    }
+    guarded = wrappers.size();
 }
 
-osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode);
+/** Runs read() on a thread with a stack of BoundedObjectReader::STACK_BYTES (OSG reads nested
+ *  objects by recursion) and returns its result or rethrows what it threw. */
+template <class Read> auto onLargeStack(const Read& read) -> decltype(read())
+{
+    struct Job
+    {
+        const Read& read;
+        decltype(read()) result{};
+        std::exception_ptr error;
+    } job{read, {}, nullptr};
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0) malformed("cannot start the reading thread");
+    pthread_attr_setstacksize(&attr, BoundedObjectReader::STACK_BYTES);
+    pthread_t thread;
+    const auto body = [](void* p) -> void*
+    {
+        Job& j = *static_cast<Job*>(p);
+        try
+        {
+            j.result = j.read();
+        }
+        catch (...)
+        {
+            j.error = std::current_exception();
+        }
+        return nullptr;
+    };
+    const int started = pthread_create(&thread, &attr, body, &job);
+    pthread_attr_destroy(&attr);
+    if (started != 0)
+        throw std::runtime_error(std::string("cannot start the reading thread: ") + std::strerror(started));
+    pthread_join(thread, nullptr);
+    if (job.error) std::rethrow_exception(job.error);
+    return job.result;
+}
+
+/** OSG's InputStream, which holds every object a read made by its UniqueID. When a read fails,
+ *  the objects it made are freed with it, except those in a cycle: a group that names its own
+ *  or an ancestor's ID among its children keeps itself alive (ModelFuzzer found the leak). So
+ *  a failed read empties every group it made first. (A read that succeeds returns its graph,
+ *  and ModelValidation cuts a cycle in it.) */
+class BoundedInputStream : public osgDB::InputStream
+{
+public:
+    using osgDB::InputStream::InputStream;
+    ~BoundedInputStream() override
+    {
+        if (_failed)
+            for (auto& entry : _identifierMap)
+                if (osg::Group* group = dynamic_cast<osg::Group*>(entry.second.get()))
+                    group->removeChildren(0, group->getNumChildren());
+    }
+    void markFailed() { _failed = true; }
+
+private:
+    bool _failed = false;
+};
+
+/** OSG's InputStream over one of our iterators, as osgdb_osg's ReaderWriterOSG2 runs it, on a
+ *  thread with a large stack; the vector properties the read meets know its iterator. */
+osg::ref_ptr<osg::Object> readStream(BoundedInputIterator& it, const osgDB::Options* options, bool needNode)
+{
+    return onLargeStack(
+        [&]
+        {
+            BoundedInputStream is(options);
+            struct Failure
+            {
+                BoundedInputStream& is;
+                bool ok = false;
+                ~Failure()
+                {
+                    if (!ok) is.markFailed();
+                }
+            } failure{is};
+            tCurrentRead = {&is, &it};
+            struct Reset
+            {
+                ~Reset() { tCurrentRead = CurrentRead(); }
+            } reset;
+            return guarded(
+                [&]
+                {
+                    const char* const format = it.isBinary() ? "binary" : "text";
+                    const osgDB::InputStream::ReadType type = is.start(&it);
+                    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+                    if (type == osgDB::InputStream::READ_UNKNOWN)
+                        malformed(std::string("an OSG ") + format + " file of unknown content type");
+                    if (needNode && type != osgDB::InputStream::READ_SCENE &&
+                        type != osgDB::InputStream::READ_OBJECT)
+                        malformed(std::string("an OSG ") + format + " file that holds no scene");
+                    is.decompress();
+                    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+                    osg::ref_ptr<osg::Object> object = is.readObject();
+                    if (const std::string e = streamError(is); !e.empty()) malformed(e);
+                    failure.ok = true;
+                    return object;
+                });
+        });
+}
 
 osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Options* options, bool needNode)
 {
@@ -350,39 +345,18 @@ osg::ref_ptr<osg::Object> readBinary(const std::string& data, const osgDB::Optio
     std::istringstream in(data);
     in.seekg(8);
     osg::ref_ptr<BoundedBinaryIterator> it = new BoundedBinaryIterator(&in, swap);
-    osgDB::InputStream is(options);
-    return guarded([&] { return readBinaryStream(is, *it, needNode); });
-}
-
-osg::ref_ptr<osg::Object> readBinaryStream(osgDB::InputStream& is, osgDB::InputIterator& it, bool needNode)
-{
-    const osgDB::InputStream::ReadType type = is.start(&it);
-    if (const std::string e = streamError(is); !e.empty()) malformed(e);
-    if (type == osgDB::InputStream::READ_UNKNOWN) malformed("an OSG binary file of unknown content type");
-    if (needNode && type != osgDB::InputStream::READ_SCENE && type != osgDB::InputStream::READ_OBJECT)
-        malformed("an OSG binary file that holds no scene");
-    is.decompress();
-    if (const std::string e = streamError(is); !e.empty()) malformed(e);
-    osg::ref_ptr<osg::Object> object = is.readObject();
-    if (const std::string e = streamError(is); !e.empty()) malformed(e);
-    return object;
+    return readStream(*it, options, needNode);
 }
 
 osg::ref_ptr<osg::Object> readAscii(const std::string& data, const osgDB::Options* options, bool needNode)
 {
-    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
-    if (!rw) malformed("no osgDB reader for OSG text files (osgdb_osg missing)");
     std::istringstream in(data);
-    in.exceptions(std::ios::failbit | std::ios::badbit);
-    osg::ref_ptr<osgDB::Options> local =
-        options ? static_cast<osgDB::Options*>(options->clone(osg::CopyOp::SHALLOW_COPY))
-                : new osgDB::Options;
-    local->setPluginStringData("fileType", "Ascii");
-    osgDB::ReaderWriter::ReadResult rr =
-        guarded([&] { return needNode ? rw->readNode(in, local.get()) : rw->readObject(in, local.get()); });
-    if (!rr.success() || !rr.getObject())
-        malformed(rr.message().empty() ? std::string("OSG's text reader returned nothing") : rr.message());
-    return rr.getObject();
+    std::string magic;
+    in >> magic; // "#Ascii" (formatOf)
+    osg::ref_ptr<BoundedAsciiIterator> it = new BoundedAsciiIterator(&in, data.size());
+    osg::ref_ptr<osg::Object> object = readStream(*it, options, needNode);
+    if (!object) malformed("OSG's text reader returned nothing");
+    return object;
 }
 } // namespace
 
@@ -407,7 +381,7 @@ BoundedObjectReader::Format BoundedObjectReader::formatOf(const std::string& dat
 osg::ref_ptr<osg::Object> BoundedObjectReader::readObject(const std::string& data,
                                                           const osgDB::Options* options)
 {
-    guardGeometryWrapper();
+    guardWrappers();
     switch (formatOf(data))
     {
     case Format::Binary:
@@ -424,7 +398,7 @@ osg::ref_ptr<osg::Object> BoundedObjectReader::readObject(const std::string& dat
 
 osg::ref_ptr<osg::Node> BoundedObjectReader::readNode(const std::string& data, const osgDB::Options* options)
 {
-    guardGeometryWrapper();
+    guardWrappers();
     osg::ref_ptr<osg::Object> o;
     switch (formatOf(data))
     {

@@ -56,10 +56,30 @@ std::string geometryProblem(const osg::Geometry& g)
     const osg::Array* vertices = g.getVertexArray();
     const unsigned n = vertices ? vertices->getNumElements() : 0u;
     if (g.getNumPrimitiveSets() > 0 && !vertices) return "primitives without a vertex array";
-    if (const auto* v3 = dynamic_cast<const osg::Vec3Array*>(vertices))
-        for (const osg::Vec3& p : *v3)
-            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
-                return "a vertex that is not finite";
+    // Vertex coordinates, of whatever array type: finite, and within MAX_COORDINATE (a vertex
+    // at 3e38 overflowed the bounding sphere's float arithmetic to infinity; ModelFuzzer found
+    // it).
+    if (vertices && vertices->getNumElements() > 0)
+    {
+        const std::size_t count = vertices->getTotalDataSize();
+        const auto bad = [](double x) { return !(std::abs(x) <= ModelValidation::MAX_COORDINATE); };
+        if (vertices->getDataType() == GL_FLOAT)
+        {
+            const auto* f = static_cast<const float*>(vertices->getDataPointer());
+            for (std::size_t i = 0; i < count / sizeof(float); ++i)
+                if (bad(f[i]))
+                    return "a vertex coordinate (" + std::to_string(f[i]) +
+                           ") that is not finite or beyond 1e15";
+        }
+        else if (vertices->getDataType() == GL_DOUBLE)
+        {
+            const auto* d = static_cast<const double*>(vertices->getDataPointer());
+            for (std::size_t i = 0; i < count / sizeof(double); ++i)
+                if (bad(d[i]))
+                    return "a vertex coordinate (" + std::to_string(d[i]) +
+                           ") that is not finite or beyond 1e15";
+        }
+    }
     // Per-vertex arrays as long as the vertex array.
     std::vector<const osg::Array*> arrays = {g.getNormalArray(), g.getColorArray(),
                                              g.getSecondaryColorArray(), g.getFogCoordArray()};

@@ -5,7 +5,9 @@
 #include <osgLoA/util/ImageCompare>
 #include <osgLoA/util/ImageFile>
 
+#include <osg/Geode>
 #include <osg/Geometry>
+#include <osg/Texture2D>
 
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
@@ -21,6 +23,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -166,6 +169,34 @@ std::string fileBytes(const std::string& path)
     std::stringstream s;
     s << f.rdbuf();
     return s.str();
+}
+
+osg::ref_ptr<osg::Geometry> triangle(const std::string& name)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    g->setName(name);
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    v->push_back({0, 0, 0});
+    v->push_back({1, 0, 0});
+    v->push_back({0, 1, 0});
+    g->setVertexArray(v.get());
+    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
+    return g;
+}
+
+std::string writeTexturedTriangle(const std::string& path)
+{
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    osg::ref_ptr<osg::Geometry> g = triangle("tri");
+    osg::ref_ptr<osg::Image> image = new osg::Image;
+    image->allocateImage(4, 4, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    std::memset(image->data(), 200, 64);
+    image->setFileName("tex.png");
+    g->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(image.get()));
+    geode->addDrawable(g.get());
+    osg::ref_ptr<osgDB::Options> o = new osgDB::Options("WriteImageHint=IncludeData");
+    EXPECT_TRUE(osgDB::writeNodeFile(*geode, path, o.get())) << path;
+    return fileBytes(path);
 }
 
 osgLoA::FilterImage photoCrop(const std::string& name, int x0, int y0, int w, int h)

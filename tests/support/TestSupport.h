@@ -19,6 +19,11 @@ namespace loatest
 
 /** The bytes of a file ("" when it cannot be read). */
 std::string fileBytes(const std::string& path);
+/** A Geometry named `name`: one triangle (0,0,0) (1,0,0) (0,1,0), drawn by DrawArrays. */
+osg::ref_ptr<osg::Geometry> triangle(const std::string& name);
+/** Writes a Geode holding one textured triangle ("tri", a 4x4 RGBA image of 200s named tex.png,
+ *  inline) to path with osgDB; returns the file's bytes. */
+std::string writeTexturedTriangle(const std::string& path);
 /** text with the first `from` replaced by `to` (a test failure when `from` is missing). */
 std::string replaced(std::string text, const std::string& from, const std::string& to);
 
