@@ -34,7 +34,7 @@
 namespace loacityjson
 {
 
-using json = nlohmann::ordered_json;
+using json = Json;
 
 namespace
 {
@@ -1495,10 +1495,8 @@ void Settings::parse(const std::string& optionString)
     }
 }
 
-nlohmann::ordered_json parseJson(std::istream& in, const std::string& source,
-                                 const osgLoA::InputLimits& limits)
+Json parseJson(std::istream& in, const std::string& source, const osgLoA::InputLimits& limits)
 {
-    using Json = nlohmann::ordered_json;
     const Json::parser_callback_t check = [&](int depth, Json::parse_event_t event, Json& parsed)
     {
         if (depth > static_cast<int>(limits.maxDepth))
@@ -1516,9 +1514,8 @@ nlohmann::ordered_json parseJson(std::istream& in, const std::string& source,
     return Json::parse(in, check);
 }
 
-osg::ref_ptr<osg::Group> buildScene(const nlohmann::ordered_json& doc, const std::string& sourceName,
-                                    const Settings& settings, const osgDB::FilePathList& textureDirs,
-                                    const osgDB::Options* options)
+osg::ref_ptr<osg::Group> buildScene(const Json& doc, const std::string& sourceName, const Settings& settings,
+                                    const osgDB::FilePathList& textureDirs, const osgDB::Options* options)
 {
     try
     {

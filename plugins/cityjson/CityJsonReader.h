@@ -8,7 +8,7 @@
 
 #include <osgLoA/util/InputLimits>
 
-#include <nlohmann/json.hpp>
+#include "IndexedOrderedMap.h"
 
 #include <stdexcept>
 #include <string>
@@ -37,15 +37,13 @@ struct Settings
 /** Parses JSON within the limits: nesting deeper than limits.maxDepth or a string longer than
  *  limits.maxStringBytes throws osgLoA::InputLimitError naming `source` and the limit before
  *  anything deeper is built; malformed JSON throws nlohmann::json::exception. */
-nlohmann::ordered_json parseJson(std::istream& in, const std::string& source,
-                                 const osgLoA::InputLimits& limits);
+Json parseJson(std::istream& in, const std::string& source, const osgLoA::InputLimits& limits);
 
 /** Builds the scene of a parsed CityJSON document. `sourceName` names the file in messages
  *  (the stream reader passes "<stream>"); `textureDirs` are searched, in order, for texture
  *  images before osgDB's data path. Throws Error. */
-osg::ref_ptr<osg::Group> buildScene(const nlohmann::ordered_json& doc, const std::string& sourceName,
-                                    const Settings& settings, const osgDB::FilePathList& textureDirs,
-                                    const osgDB::Options* options);
+osg::ref_ptr<osg::Group> buildScene(const Json& doc, const std::string& sourceName, const Settings& settings,
+                                    const osgDB::FilePathList& textureDirs, const osgDB::Options* options);
 
 } // namespace loacityjson
 

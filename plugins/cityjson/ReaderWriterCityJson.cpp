@@ -67,7 +67,7 @@ public:
         osgDB::ifstream in(path.c_str(), std::ios::in | std::ios::binary);
         if (!in) return ReadResult("cityjson: " + path + ": cannot open the file");
 
-        nlohmann::ordered_json doc;
+        loacityjson::Json doc;
         try
         {
             doc = loacityjson::parseJson(in, path, settings.limits);
@@ -98,7 +98,7 @@ public:
 
     ReadResult readNode(std::istream& in, const Options* options) const override
     {
-        nlohmann::ordered_json doc;
+        loacityjson::Json doc;
         try
         {
             loacityjson::Settings settings;
@@ -121,9 +121,8 @@ public:
     }
 
 private:
-    static ReadResult build(const nlohmann::ordered_json& doc, const std::string& source,
-                            const Options* options, const osgDB::FilePathList& dirs,
-                            const Options* imageOptions)
+    static ReadResult build(const loacityjson::Json& doc, const std::string& source, const Options* options,
+                            const osgDB::FilePathList& dirs, const Options* imageOptions)
     {
         try
         {

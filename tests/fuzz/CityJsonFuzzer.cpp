@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     osg::ref_ptr<osg::Group> scene;
     try
     {
-        const nlohmann::ordered_json doc = loacityjson::parseJson(in, "<fuzz>", settings.limits);
+        const loacityjson::Json doc = loacityjson::parseJson(in, "<fuzz>", settings.limits);
         scene = loacityjson::buildScene(doc, "<fuzz>", settings, osgDB::FilePathList(), nullptr);
     }
     catch (const std::exception&)
