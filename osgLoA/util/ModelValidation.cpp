@@ -312,11 +312,19 @@ std::string ModelValidation::checkOsgtText(const std::string& text)
     bool inWord = false;
     const auto nonFinite = [&](std::size_t end) -> std::string
     {
-        std::string w = text.substr(wordStart, end - wordStart);
-        for (char& ch : w)
-            ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        if (!w.empty() && (w[0] == '-' || w[0] == '+')) w.erase(0, 1);
-        if (w == "nan" || w == "inf" || w == "infinity" || w.compare(0, 4, "nan(") == 0)
+        // Without copying the word (this runs once per word of every text read).
+        std::size_t b = wordStart;
+        if (b < end && (text[b] == '-' || text[b] == '+')) ++b;
+        const std::size_t n = end - b;
+        const auto is = [&](const char* w, std::size_t len)
+        {
+            for (std::size_t k = 0; k < len; ++k)
+                if (std::tolower(static_cast<unsigned char>(text[b + k])) != w[k]) return false;
+            return true;
+        };
+        if (n < 3 || ((text[b] | 0x20) != 'n' && (text[b] | 0x20) != 'i')) return std::string();
+        if ((n == 3 && (is("nan", 3) || is("inf", 3))) || (n == 8 && is("infinity", 8)) ||
+            (n >= 4 && is("nan(", 4)))
             return "the text holds a number that is not finite ('" + text.substr(wordStart, end - wordStart) +
                    "' at byte " + std::to_string(wordStart) + ")";
         return std::string();
