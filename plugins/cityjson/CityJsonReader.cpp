@@ -1495,23 +1495,88 @@ void Settings::parse(const std::string& optionString)
     }
 }
 
+namespace
+{
+/** nlohmann's DOM builder with the limits checked as it goes: containers open at most
+ *  max-depth deep where a value is read, strings and keys at most max-string bytes. (The
+ *  callback parser did this before, but after every object it ends it scans the object around
+ *  it for discarded entries: "CityObjects" of n entries took n^2/2 steps.) */
+class LimitedDomBuilder
+{
+public:
+    LimitedDomBuilder(Json& result, const std::string& source, const osgLoA::InputLimits& limits)
+        : _dom(result, true), _source(source), _limits(limits)
+    {
+    }
+    bool null() { return value() && _dom.null(); }
+    bool boolean(bool b) { return value() && _dom.boolean(b); }
+    bool number_integer(Json::number_integer_t v) { return value() && _dom.number_integer(v); }
+    bool number_unsigned(Json::number_unsigned_t v) { return value() && _dom.number_unsigned(v); }
+    bool number_float(Json::number_float_t v, const Json::string_t& text)
+    {
+        return value() && _dom.number_float(v, text);
+    }
+    bool string(Json::string_t& v) { return value() && sized(v) && _dom.string(v); }
+    bool binary(Json::binary_t& v) { return value() && _dom.binary(v); }
+    bool key(Json::string_t& v) { return value() && sized(v) && _dom.key(v); }
+    bool start_object(std::size_t n)
+    {
+        value();
+        ++_open;
+        return _dom.start_object(n);
+    }
+    bool end_object()
+    {
+        --_open;
+        return _dom.end_object();
+    }
+    bool start_array(std::size_t n)
+    {
+        value();
+        ++_open;
+        return _dom.start_array(n);
+    }
+    bool end_array()
+    {
+        --_open;
+        return _dom.end_array();
+    }
+    bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e)
+    {
+        return _dom.parse_error(position, token, e);
+    }
+
+private:
+    nlohmann::detail::json_sax_dom_parser<Json> _dom;
+    const std::string& _source;
+    const osgLoA::InputLimits& _limits;
+    std::size_t _open = 0; ///< containers open
+
+    bool value() const
+    {
+        if (_open > _limits.maxDepth)
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                _source, "JSON nested deeper than " + std::to_string(_limits.maxDepth) + " levels",
+                "max-depth", _limits.maxDepth));
+        return true;
+    }
+    bool sized(const Json::string_t& v) const
+    {
+        if (v.size() > _limits.maxStringBytes)
+            throw osgLoA::InputLimitError(
+                osgLoA::InputLimits::exceeded(_source, "a string of " + std::to_string(v.size()) + " bytes",
+                                              "max-string", _limits.maxStringBytes));
+        return true;
+    }
+};
+} // namespace
+
 Json parseJson(std::istream& in, const std::string& source, const osgLoA::InputLimits& limits)
 {
-    const Json::parser_callback_t check = [&](int depth, Json::parse_event_t event, Json& parsed)
-    {
-        if (depth > static_cast<int>(limits.maxDepth))
-            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
-                source, "JSON nested deeper than " + std::to_string(limits.maxDepth) + " levels", "max-depth",
-                limits.maxDepth));
-        if ((event == Json::parse_event_t::value || event == Json::parse_event_t::key) &&
-            parsed.is_string() && parsed.get_ref<const std::string&>().size() > limits.maxStringBytes)
-            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
-                source,
-                "a string of " + std::to_string(parsed.get_ref<const std::string&>().size()) + " bytes",
-                "max-string", limits.maxStringBytes));
-        return true;
-    };
-    return Json::parse(in, check);
+    Json result;
+    LimitedDomBuilder builder(result, source, limits);
+    Json::sax_parse(in, &builder);
+    return result;
 }
 
 osg::ref_ptr<osg::Group> buildScene(const Json& doc, const std::string& sourceName, const Settings& settings,
