@@ -171,6 +171,14 @@ TEST(BoundedObjectReaderTest, CountsBeyondTheDataAreRefusedAtOnce)
         << levels;
     EXPECT_LT(seconds, 1.0);
 
+    // An image's data size, allocated by OSG before it reads a byte (4 GB: seconds under ASan).
+    const std::string image =
+        errorOf(loatest::fileBytes(std::string(LOA_SOURCE_DIR) +
+                                   "/tests/fuzz/crashes/model/slow-fuzzer-found-image-of-4-gb-stated.osgb"),
+                &seconds);
+    EXPECT_NE(image.find("an image of 4294967295 bytes stated"), std::string::npos) << image;
+    EXPECT_LT(seconds, 1.0);
+
     const std::string text = loatest::writeTexturedTriangle(
         loatest::freshDirectory("BoundedObjectReaderTest/counts") + "/textured.osgt");
     const std::string vector = errorOf(loatest::replaced(text, "vector 3 {", "vector 300000000 {"), &seconds);

@@ -200,10 +200,10 @@ void BoundedBinaryIterator::imageSequence(char kind, std::int64_t value)
 {
     // InputStream::readImage (binary) after a new image's ID: the file name (a string), the
     // write hint and the decision (integers; 0 is data inline), the origin, size, formats,
-    // packing and allocation mode (nine integers), the data's size (an unsigned integer). When
-    // that is 0 no data is read and the next integer is the mipmap level count, which OSG
-    // makes a vector of before it reads one (a 2 kB model made it allocate 13 GB; ModelFuzzer
-    // found it).
+    // packing and allocation mode (nine integers), the data's size (an unsigned integer), checked
+    // against the bytes left. When that is 0 no data is read and the next integer is the mipmap
+    // level count, which OSG makes a vector of before it reads one (a 2 kB model made it
+    // allocate 13 GB; ModelFuzzer found it).
     const int step = _imageStep;
     _imageStep = 0;
     if (step == 0) return;
@@ -212,6 +212,11 @@ void BoundedBinaryIterator::imageSequence(char kind, std::int64_t value)
     if (step == 3 && value != 0) return; // not inline data
     if (step == 13)
     {
+        // The data's size: OSG allocates that many bytes before it reads one (4 GB stated by a
+        // 2 kB model; under ASan the allocation alone took seconds; ModelFuzzer found it).
+        if (static_cast<std::uint64_t>(value) > remaining())
+            fail("an image of " + std::to_string(value) + " bytes stated, with " +
+                 std::to_string(remaining()) + " bytes left in the data");
         _levelsNext = value == 0;
         return;
     }
