@@ -22,6 +22,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 using osgLoA::ModelStructureError;
 using osgLoA::ModelValidation;
@@ -53,6 +54,27 @@ TEST(ModelValidationTest, ImagesThatStateMoreThanTheyHoldAreEmptied)
                   4)
             << out;
         EXPECT_NE(out.find("tex.png"), std::string::npos) << out;
+    }
+    // A pixel format without a size (0-byte rows: nothing looked too large, and the filter
+    // cache's hash walked 2e9 rows; ModelFuzzer found it), and a size OSG's unsigned int
+    // overflows (65536 x 65536 x RGBA = 16 GiB, 0 in 32 bits) over 64 bytes of data.
+    for (const auto& c :
+         {std::make_tuple(GLenum(0x20656461), GLenum(GL_UNSIGNED_BYTE), 4, 4, "has no pixel size"),
+          std::make_tuple(GLenum(GL_RGBA), GLenum(GL_UNSIGNED_BYTE), 65536, 65536, "(17179869184 bytes)")})
+    {
+        osg::ref_ptr<osg::Geode> g = new osg::Geode;
+        osg::ref_ptr<osg::Geometry> tri = triangle("t");
+        osg::ref_ptr<osg::Image> image = new osg::Image;
+        unsigned char* data = new unsigned char[64];
+        std::memset(data, 200, 64);
+        image->setImage(std::get<2>(c), std::get<3>(c), 1, GL_RGBA, std::get<0>(c), std::get<1>(c), data,
+                        osg::Image::USE_NEW_DELETE);
+        tri->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D(image.get()));
+        g->addDrawable(tri.get());
+        const ModelValidation v = ModelValidation::validate(*g, "pixels.osgb");
+        ASSERT_EQ(v.emptiedImages.size(), 1u);
+        EXPECT_NE(v.emptiedImages[0].find(std::get<4>(c)), std::string::npos) << v.emptiedImages[0];
+        EXPECT_EQ(image->s(), 0);
     }
 }
 

@@ -259,6 +259,9 @@ FilterCacheKey FilterCache::imageHash(const osg::Image& image)
                  osg::Image::computePixelSizeInBits(image.getPixelFormat(), image.getDataType()) +
              7) /
             8;
+        if (rowBytes == 0)
+            throw std::invalid_argument("FilterCache: image '" + image.getFileName() +
+                                        "' has a pixel format without a size");
         for (int r = 0; r < image.r(); ++r)
             for (int t = 0; t < image.t(); ++t)
                 h.update(image.data(0, t, r), rowBytes);

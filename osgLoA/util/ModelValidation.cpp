@@ -6,8 +6,10 @@
 #include <osg/StateSet>
 #include <osg/Texture>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <malloc.h>
@@ -137,13 +139,31 @@ std::string geometryProblem(const osg::Geometry& g)
     return std::string();
 }
 
+std::string hex(unsigned v)
+{
+    char text[16];
+    std::snprintf(text, sizeof text, "%x", v);
+    return text;
+}
+
 /** Why an image's data cannot hold its stated size, or "". */
 std::string imageProblem(const osg::Image& image)
 {
     if (image.s() == 0 || image.t() == 0 || image.r() == 0) return std::string(); // already empty
     if (!image.data())
         return "no data for a " + std::to_string(image.s()) + "x" + std::to_string(image.t()) + " image";
-    const unsigned long long stated = image.getTotalSizeInBytesIncludingMipmaps();
+    // A pixel format and data type OSG gives no size: nothing can be read or hashed row by row
+    // (an image of 0-byte rows and 2e9 of them kept FilterCache::imageHash busy for minutes;
+    // ModelFuzzer found it).
+    const unsigned bits = osg::Image::computePixelSizeInBits(image.getPixelFormat(), image.getDataType());
+    if (bits == 0 && !image.isCompressed())
+        return "pixel format 0x" + hex(image.getPixelFormat()) + " with data type 0x" +
+               hex(image.getDataType()) + " has no pixel size";
+    // OSG's own size is an unsigned int, which 65536x65536x4 overflows: the base level in 64 bits.
+    const unsigned long long base =
+        static_cast<unsigned long long>(image.s()) * image.t() * image.r() * bits / 8;
+    const unsigned long long stated = std::max<unsigned long long>(
+        image.getTotalSizeInBytesIncludingMipmaps(), image.isCompressed() ? 0 : base);
     if (image.getAllocationMode() == osg::Image::USE_NEW_DELETE ||
         image.getAllocationMode() == osg::Image::USE_MALLOC_FREE)
     {
