@@ -311,3 +311,47 @@ TEST(ModelValidationTest, CyclesAndExcessiveDepthAreRefused)
               std::string::npos)
         << out;
 }
+
+// A texture's wrap or filter mode that is no GL mode: OSG stores any number a file holds in the
+// enum, and loading it is undefined behaviour (UBSan; ModelFuzzer found WRAP_S 16764417). The
+// modes are repaired to OSG's defaults with a warning naming the texture.
+TEST(ModelValidationTest, TextureModesThatAreNoModesAreRepaired)
+{
+    struct Poke : osg::Texture2D
+    {
+        static void raw(osg::Texture2D& t, int wrapS, int magFilter)
+        {
+            std::memcpy(&(t.*(&Poke::_wrap_s)), &wrapS, sizeof wrapS);
+            std::memcpy(&(t.*(&Poke::_mag_filter)), &magFilter, sizeof magFilter);
+        }
+    };
+    osg::ref_ptr<osg::Geode> g = new osg::Geode;
+    osg::ref_ptr<osg::Geometry> tri = triangle("t");
+    osg::ref_ptr<osg::Texture2D> texture = new osg::Texture2D;
+    texture->setName("bricks");
+    texture->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
+    Poke::raw(*texture, 16764417, 7);
+    tri->getOrCreateStateSet()->setTextureAttributeAndModes(0, texture.get());
+    g->addDrawable(tri.get());
+    struct Capture : osg::NotifyHandler
+    {
+        std::string text;
+        void notify(osg::NotifySeverity, const char* message) override { text += message; }
+    };
+    osg::ref_ptr<Capture> capture = new Capture;
+    osg::ref_ptr<osg::NotifyHandler> previous = osg::getNotifyHandler();
+    osg::setNotifyHandler(capture.get());
+    ModelValidation::validate(*g, "modes.osgb");
+    osg::setNotifyHandler(previous.get());
+    std::ostringstream warnings;
+    warnings << capture->text;
+    EXPECT_NE(warnings.str().find("texture 'bricks' WRAP_S 16764417 is no wrap mode; CLAMP used"),
+              std::string::npos)
+        << warnings.str();
+    EXPECT_NE(warnings.str().find("texture 'bricks' MAG_FILTER 7 is no filter mode; LINEAR used"),
+              std::string::npos)
+        << warnings.str();
+    EXPECT_EQ(texture->getWrap(osg::Texture::WRAP_S), osg::Texture::CLAMP);
+    EXPECT_EQ(texture->getWrap(osg::Texture::WRAP_T), osg::Texture::REPEAT); // valid: kept
+    EXPECT_EQ(texture->getFilter(osg::Texture::MAG_FILTER), osg::Texture::LINEAR);
+}

@@ -41,6 +41,44 @@ struct BindingPeek : osg::Array
     }
 };
 
+/** A texture's wrap and filter modes as the numbers stored: OSG's serializers store any number
+ *  a file holds in these enums (no fixed underlying type), and loading one outside the enum is
+ *  undefined behaviour (UBSan; ModelFuzzer found a wrap mode of 16764417). */
+struct TexturePeek : osg::Texture
+{
+    static int wrap(const osg::Texture& t, int which)
+    {
+        static_assert(sizeof(osg::Texture::WrapMode) == sizeof(int), "osg::Texture::WrapMode is an int");
+        const osg::Texture::WrapMode* p = which == 0   ? &(t.*(&TexturePeek::_wrap_s))
+                                          : which == 1 ? &(t.*(&TexturePeek::_wrap_t))
+                                                       : &(t.*(&TexturePeek::_wrap_r));
+        int value = 0;
+        std::memcpy(&value, p, sizeof value);
+        return value;
+    }
+    static int filter(const osg::Texture& t, bool mag)
+    {
+        static_assert(sizeof(osg::Texture::FilterMode) == sizeof(int), "osg::Texture::FilterMode is an int");
+        int value = 0;
+        std::memcpy(&value, mag ? &(t.*(&TexturePeek::_mag_filter)) : &(t.*(&TexturePeek::_min_filter)),
+                    sizeof value);
+        return value;
+    }
+};
+
+bool knownWrap(int w)
+{
+    return w == osg::Texture::CLAMP || w == osg::Texture::CLAMP_TO_EDGE ||
+           w == osg::Texture::CLAMP_TO_BORDER || w == osg::Texture::REPEAT || w == osg::Texture::MIRROR;
+}
+
+bool knownFilter(int f)
+{
+    return f == osg::Texture::LINEAR || f == osg::Texture::LINEAR_MIPMAP_LINEAR ||
+           f == osg::Texture::LINEAR_MIPMAP_NEAREST || f == osg::Texture::NEAREST ||
+           f == osg::Texture::NEAREST_MIPMAP_LINEAR || f == osg::Texture::NEAREST_MIPMAP_NEAREST;
+}
+
 int storedBinding(const osg::Array& a)
 {
     return BindingPeek::of(a);
@@ -217,6 +255,30 @@ private:
         {
             auto* t = dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE));
             if (!t) continue;
+            // Modes that are no GL mode: repaired to OSG's defaults, with a warning.
+            const char* const wrapNames[] = {"WRAP_S", "WRAP_T", "WRAP_R"};
+            const osg::Texture::WrapParameter wraps[] = {osg::Texture::WRAP_S, osg::Texture::WRAP_T,
+                                                         osg::Texture::WRAP_R};
+            for (int w = 0; w < 3; ++w)
+                if (!knownWrap(TexturePeek::wrap(*t, w)))
+                {
+                    OSG_WARN << _source << ": " << nameOf(*t, "texture") << " " << wrapNames[w] << " "
+                             << TexturePeek::wrap(*t, w) << " is no wrap mode; CLAMP used" << std::endl;
+                    t->setWrap(wraps[w], osg::Texture::CLAMP);
+                }
+            if (!knownFilter(TexturePeek::filter(*t, false)))
+            {
+                OSG_WARN << _source << ": " << nameOf(*t, "texture") << " MIN_FILTER "
+                         << TexturePeek::filter(*t, false) << " is no filter mode; LINEAR_MIPMAP_LINEAR used"
+                         << std::endl;
+                t->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
+            }
+            if (!knownFilter(TexturePeek::filter(*t, true)))
+            {
+                OSG_WARN << _source << ": " << nameOf(*t, "texture") << " MAG_FILTER "
+                         << TexturePeek::filter(*t, true) << " is no filter mode; LINEAR used" << std::endl;
+                t->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+            }
             for (unsigned i = 0; i < t->getNumImages(); ++i)
             {
                 osg::Image* image = t->getImage(i);
