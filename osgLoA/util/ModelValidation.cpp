@@ -79,6 +79,42 @@ bool knownFilter(int f)
            f == osg::Texture::NEAREST_MIPMAP_LINEAR || f == osg::Texture::NEAREST_MIPMAP_NEAREST;
 }
 
+/** Wrap and filter modes that are no GL mode, repaired to OSG's defaults with a warning. */
+void repairModes(osg::Texture& t, const std::string& source)
+{
+    const struct
+    {
+        const char* name;
+        osg::Texture::WrapParameter parameter;
+    } wraps[] = {
+        {"WRAP_S", osg::Texture::WRAP_S}, {"WRAP_T", osg::Texture::WRAP_T}, {"WRAP_R", osg::Texture::WRAP_R}};
+    for (int w = 0; w < 3; ++w)
+        if (!knownWrap(TexturePeek::wrap(t, w)))
+        {
+            OSG_WARN << source << ": " << nameOf(t, "texture") << " " << wraps[w].name << " "
+                     << TexturePeek::wrap(t, w) << " is no wrap mode; CLAMP used" << std::endl;
+            t.setWrap(wraps[w].parameter, osg::Texture::CLAMP);
+        }
+    const struct
+    {
+        const char* name;
+        bool mag;
+        osg::Texture::FilterParameter parameter;
+        osg::Texture::FilterMode fallback;
+        const char* fallbackName;
+    } filters[] = {{"MIN_FILTER", false, osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR,
+                    "LINEAR_MIPMAP_LINEAR"},
+                   {"MAG_FILTER", true, osg::Texture::MAG_FILTER, osg::Texture::LINEAR, "LINEAR"}};
+    for (const auto& f : filters)
+        if (!knownFilter(TexturePeek::filter(t, f.mag)))
+        {
+            OSG_WARN << source << ": " << nameOf(t, "texture") << " " << f.name << " "
+                     << TexturePeek::filter(t, f.mag) << " is no filter mode; " << f.fallbackName << " used"
+                     << std::endl;
+            t.setFilter(f.parameter, f.fallback);
+        }
+}
+
 int storedBinding(const osg::Array& a)
 {
     return BindingPeek::of(a);
@@ -255,30 +291,7 @@ private:
         {
             auto* t = dynamic_cast<osg::Texture*>(ss->getTextureAttribute(u, osg::StateAttribute::TEXTURE));
             if (!t) continue;
-            // Modes that are no GL mode: repaired to OSG's defaults, with a warning.
-            const char* const wrapNames[] = {"WRAP_S", "WRAP_T", "WRAP_R"};
-            const osg::Texture::WrapParameter wraps[] = {osg::Texture::WRAP_S, osg::Texture::WRAP_T,
-                                                         osg::Texture::WRAP_R};
-            for (int w = 0; w < 3; ++w)
-                if (!knownWrap(TexturePeek::wrap(*t, w)))
-                {
-                    OSG_WARN << _source << ": " << nameOf(*t, "texture") << " " << wrapNames[w] << " "
-                             << TexturePeek::wrap(*t, w) << " is no wrap mode; CLAMP used" << std::endl;
-                    t->setWrap(wraps[w], osg::Texture::CLAMP);
-                }
-            if (!knownFilter(TexturePeek::filter(*t, false)))
-            {
-                OSG_WARN << _source << ": " << nameOf(*t, "texture") << " MIN_FILTER "
-                         << TexturePeek::filter(*t, false) << " is no filter mode; LINEAR_MIPMAP_LINEAR used"
-                         << std::endl;
-                t->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
-            }
-            if (!knownFilter(TexturePeek::filter(*t, true)))
-            {
-                OSG_WARN << _source << ": " << nameOf(*t, "texture") << " MAG_FILTER "
-                         << TexturePeek::filter(*t, true) << " is no filter mode; LINEAR used" << std::endl;
-                t->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
-            }
+            repairModes(*t, _source);
             for (unsigned i = 0; i < t->getNumImages(); ++i)
             {
                 osg::Image* image = t->getImage(i);
