@@ -16,6 +16,12 @@
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <osmium/io/pbf_output.hpp>
+#include <osmium/io/reader.hpp>
+#include <osmium/io/writer.hpp>
+#include <osmium/io/xml_input.hpp>
+
+#include <bzlib.h>
 
 #include <gtest/gtest.h>
 
@@ -467,6 +473,135 @@ TEST(OsmImportTest, WestOaklandBz2CountsMatchAnIndependentScan)
     EXPECT_EQ(major, 5u);
 }
 
+/** The osgt text of a scene without its loa.source value (the file name). */
+std::string sceneText(osg::Node& n)
+{
+    n.setUserValue("loa.source", std::string());
+    return loatest::toOsgt(n);
+}
+
+// The formats: XML, PBF (written here from the real XML by libosmium's writer, so its reading is
+// checked against the XML's) and bzip2 in several streams as pbzip2 writes it give one scene.
+TEST(OsmImportTest, PbfAndMultiStreamBz2GiveTheXmlScene)
+{
+    REQUIRE_DATA();
+    const std::string dir = loatest::freshDirectory("OsmImportTest-formats");
+    const std::string pbf = dir + "/kirchberg.osm.pbf";
+    {
+        osmium::io::Reader reader(dataFile("kirchberg.osm"));
+        osmium::io::Writer writer(pbf);
+        while (osmium::memory::Buffer buffer = reader.read())
+            writer(std::move(buffer));
+        writer.close();
+        reader.close();
+    }
+    osg::ref_ptr<osg::Node> xml = load(dataFile("kirchberg.osm"));
+    osg::ref_ptr<osg::Node> fromPbf = load(pbf);
+    ASSERT_TRUE(xml.valid());
+    ASSERT_TRUE(fromPbf.valid());
+    EXPECT_EQ(FeatureIndex(*fromPbf).counts().toJson(), FeatureIndex(*xml).counts().toJson());
+    EXPECT_EQ(sceneText(*fromPbf), sceneText(*xml));
+
+    // Three bzip2 streams, each a third of the XML, one after the other.
+    std::ifstream in(dataFile("kirchberg.osm"), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string packed;
+    for (std::size_t part = 0; part < 3; ++part)
+    {
+        const std::size_t from = text.size() * part / 3, to = text.size() * (part + 1) / 3;
+        std::vector<char> out(to - from + (to - from) / 100 + 700);
+        unsigned outSize = static_cast<unsigned>(out.size());
+        ASSERT_EQ(BZ2_bzBuffToBuffCompress(out.data(), &outSize, const_cast<char*>(text.data() + from),
+                                           static_cast<unsigned>(to - from), 9, 0, 0),
+                  BZ_OK);
+        packed.append(out.data(), outSize);
+    }
+    const std::string bz2 = dir + "/kirchberg.osm.bz2";
+    std::ofstream(bz2, std::ios::binary) << packed;
+    osg::ref_ptr<osg::Node> fromBz2 = load(bz2);
+    ASSERT_TRUE(fromBz2.valid());
+    EXPECT_EQ(sceneText(*fromBz2), sceneText(*xml));
+}
+
+// GDAL's OSM driver read these files before libosmium; its default osmconf.ini rules stay: a closed
+// way is an area with an area key (building, landuse, ...) or area=yes, never with area=no; the
+// ignore list (note, source, fixme, ...) is dropped; a node tagged only with "unsignificant" keys
+// is no point; multipolygon relations are assembled only when every member way is in the file.
+TEST(OsmImportTest, ClosedWaysRelationsAndTagsFollowOsmconf)
+{
+    OsmWriter w;
+    const double lat = 47.5, lon = 9.5;
+    const std::string roundabout = w.box(lat, lon, 40, 40, {{"highway", "residential"}});
+    const std::string square = w.box(lat + 0.001, lon, 30, 30, {{"highway", "pedestrian"}, {"area", "yes"}});
+    const std::string notArea = w.box(lat + 0.002, lon, 30, 30, {{"building", "yes"}, {"area", "no"}});
+    const std::string house =
+        w.box(lat + 0.003, lon, 10, 10, {{"building", "house"}, {"note", "checked"}, {"source", "survey"}});
+    const std::string tree = w.node(lat + 0.004, lon, {{"natural", "tree"}, {"fixme", "species?"}});
+    w.node(lat + 0.004, lon + 0.001, {{"source", "survey"}, {"created_by", "JOSM"}});
+    const std::string park = w.box(lat + 0.005, lon, 50, 50, {});
+    const std::string parkRel =
+        w.relation({{park, "outer"}}, {{"type", "multipolygon"}, {"leisure", "park"}});
+    const std::string missing =
+        w.relation({{park, "outer"}, {"999999", "outer"}}, {{"type", "multipolygon"}, {"landuse", "grass"}});
+    osg::ref_ptr<osg::Node> n = load(w.write("osmconf"));
+    ASSERT_TRUE(n.valid());
+    const FeatureIndex index(*n);
+    const FeatureIndex::Entry* e = bySource(index, "way/" + roundabout);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(e->feature->getSourceType(), "highway=residential"); // a road ribbon, not an area
+    EXPECT_GT(drawableArea(e->node.get(), "TrafficArea"), 0.0);
+    e = bySource(index, "way/" + square);
+    ASSERT_NE(e, nullptr);
+    EXPECT_NEAR(drawableArea(e->node.get(), "TrafficArea"), 900.0, 9.0); // the square, flat
+    EXPECT_EQ(bySource(index, "way/" + notArea), nullptr);               // a building line: nothing
+    e = bySource(index, "way/" + house);
+    ASSERT_NE(e, nullptr);
+    std::string value;
+    EXPECT_TRUE(e->node->getUserValue("osm.building", value));
+    EXPECT_FALSE(e->node->getUserValue("osm.note", value));
+    EXPECT_FALSE(e->node->getUserValue("osm.source", value));
+    e = bySource(index, "node/" + tree);
+    ASSERT_NE(e, nullptr);
+    EXPECT_FALSE(e->node->getUserValue("osm.fixme", value));
+    ASSERT_NE(bySource(index, "relation/" + parkRel), nullptr);
+    EXPECT_EQ(bySource(index, "relation/" + missing), nullptr);
+    EXPECT_EQ(index.counts().get(FeatureType::Green), 2u); // the tree and the park
+    EXPECT_EQ(index.counts().get(FeatureType::Building), 1u);
+    EXPECT_EQ(index.counts().get(FeatureType::Street), 2u);
+}
+
+// JOSM saves new objects with negative ids; an OSM file lists nodes, then ways, then relations, and
+// one that does not is refused with a message that says so (the ways' nodes would be unknown).
+TEST(OsmImportTest, NegativeIdsReadAndOrderIsChecked)
+{
+    const std::string josm = writeText(
+        "josm.osm",
+        "<?xml version='1.0'?>\n<osm version=\"0.6\" generator=\"JOSM\">\n"
+        " <node id=\"-3\" lat=\"48.0\" lon=\"11.0\"/><node id=\"-2\" lat=\"48.0\" lon=\"11.0002\"/>\n"
+        " <node id=\"-1\" lat=\"48.0002\" lon=\"11.0002\"/><node id=\"7\" lat=\"48.0002\" lon=\"11.0\"/>\n"
+        " <way id=\"-5\"><nd ref=\"-3\"/><nd ref=\"-2\"/><nd ref=\"-1\"/><nd ref=\"7\"/><nd ref=\"-3\"/>"
+        "<tag k=\"building\" v=\"yes\"/></way>\n</osm>\n");
+    osg::ref_ptr<osg::Node> n = load(josm);
+    ASSERT_TRUE(n.valid());
+    const FeatureIndex index(*n);
+    const FeatureIndex::Entry* e = bySource(index, "way/-5");
+    ASSERT_NE(e, nullptr);
+    const double side = 0.0002 * metresPerDegreeLat(48.0), across = 0.0002 * metresPerDegreeLon(48.0);
+    EXPECT_NEAR(drawableArea(e->node.get(), "RoofSurface"), side * across, 0.01 * side * across);
+
+    const std::string late = writeText(
+        "late.osm", "<osm version=\"0.6\"><way id=\"5\"><nd ref=\"1\"/><nd ref=\"2\"/>"
+                    "<tag k=\"highway\" v=\"residential\"/></way><node id=\"1\" lat=\"48\" lon=\"11\"/>"
+                    "<node id=\"2\" lat=\"48\" lon=\"11.001\"/></osm>\n");
+    auto rr = loadResult(late);
+    EXPECT_FALSE(rr.validNode());
+    EXPECT_NE(rr.message().find("node 1 comes after ways or relations"), std::string::npos) << rr.message();
+
+    rr = loadResult(writeText("truncated.osm.bz2", std::string("BZh91AY&SY", 10)));
+    EXPECT_FALSE(rr.validNode());
+    EXPECT_NE(rr.message().find("not valid bzip2 data"), std::string::npos) << rr.message();
+}
+
 // --- fixtures --------------------------------------------------------------------------------
 TEST(OsmImportTest, ExtrusionHeightsFromHeightLevelsAndDefault)
 {
@@ -797,6 +932,17 @@ TEST(OsmImportTest, ErrorsAreClearNotCrashes)
     rr = loadResult(notOsm);
     EXPECT_FALSE(rr.validNode());
     EXPECT_NE(rr.message().find("not an OpenStreetMap file"), std::string::npos) << rr.message();
+    rr = loadResult(writeText("html.osm", "<html><body>a web page</body></html>\n"));
+    EXPECT_NE(rr.message().find("not an OpenStreetMap file"), std::string::npos) << rr.message();
+    // Malformed XML names the line and column where expat does, libosmium's element checks say what.
+    rr = loadResult(malformed);
+    EXPECT_NE(rr.message().find("malformed: XML error: Unknown element in <node>: way"), std::string::npos)
+        << rr.message();
+    rr = loadResult(
+        writeText("mismatch.osm", "<osm version=\"0.6\">\n <node id=\"1\" lat=\"48\" lon=\"11\">\n</way>\n"));
+    EXPECT_NE(rr.message().find("malformed: XML error at line 3, column 2: mismatched tag"),
+              std::string::npos)
+        << rr.message();
 
     OsmWriter w;
     w.node(48.0, 11.0, {{"highway", "stop"}});
@@ -841,6 +987,18 @@ TEST(OsmImportTest, BombsStopAtTheLimitAndAbsurdValuesAreClamped)
         std::string::npos)
         << rr.message();
     EXPECT_LT(seconds, 1.0);
+    // The object and vertex limits, on a real file (46 objects and 1,000s of vertices).
+    if (haveData())
+    {
+        rr = loadResult(dataFile("kirchberg.osm"), "max-objects=20");
+        EXPECT_NE(rr.message().find("more than 20 OpenStreetMap elements exceeds the limit max-objects=20"),
+                  std::string::npos)
+            << rr.message();
+        rr = loadResult(dataFile("kirchberg.osm"), "max-vertices=100");
+        EXPECT_NE(rr.message().find("more than 100 vertices exceeds the limit max-vertices=100"),
+                  std::string::npos)
+            << rr.message();
+    }
     rr = loadResult(dir + "/bomb.osm.bz2", "max-inflated=x");
     EXPECT_NE(rr.message().find("max-inflated=x"), std::string::npos) << rr.message();
 

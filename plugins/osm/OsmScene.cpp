@@ -507,10 +507,10 @@ private:
             else
             {
                 c = classifyLine(o.tags);
-                // OGR keeps closed ways whose tags its osmconf does not list as areas (water=*,
-                // waterway=riverbank) in "lines": treat them as the areas they are.
+                // osmconf's closed_ways_are_polygons (OsmFile) leaves closed ways with water=* or
+                // waterway=riverbank in "lines": treat them as the areas they are, unless area=no.
                 const bool closed = o.line.size() >= 4 && (o.line.front() - o.line.back()).length() < 1e-12;
-                if (c.kind == Kind::None && closed)
+                if (c.kind == Kind::None && closed && tag(o.tags, "area") != "no")
                 {
                     Classification a = classifyArea(o.tags);
                     if (a.kind != Kind::None && a.kind != Kind::RoadArea)

@@ -1,4 +1,4 @@
-// Turns OpenStreetMap objects (already read by OGR, in WGS84 lon/lat) into an osgLoA scene:
+// Turns OpenStreetMap objects (already read by OsmFile, in WGS84 lon/lat) into an osgLoA scene:
 // a local transverse Mercator frame, a ground (flat or a GeoTIFF DEM), and one feature per
 // object (docs/osm.md).
 #ifndef OSGLOA_PLUGINS_OSM_OSMSCENE_H
@@ -34,7 +34,7 @@ struct ImportOptions
 using Ring = std::vector<osg::Vec2d>;
 using Polygon = std::vector<Ring>; ///< [0] outer ring, then holes
 
-/** One OSM object as OGR delivered it. */
+/** One OSM object as OsmFile delivers it. */
 struct OsmObject
 {
     enum Geometry

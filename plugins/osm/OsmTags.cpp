@@ -8,33 +8,6 @@ namespace osmimport
 {
 namespace
 {
-void skipSpace(const std::string& s, std::size_t& i)
-{
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i])))
-        ++i;
-}
-
-// Reads a double-quoted string with backslash escapes starting at s[i] == '"'.
-bool readQuoted(const std::string& s, std::size_t& i, std::string& out)
-{
-    if (i >= s.size() || s[i] != '"') return false;
-    ++i;
-    out.clear();
-    while (i < s.size())
-    {
-        const char c = s[i++];
-        if (c == '"') return true;
-        if (c == '\\')
-        {
-            if (i >= s.size()) return false;
-            out += s[i++];
-        }
-        else
-            out += c;
-    }
-    return false; // unterminated
-}
-
 std::string trim(const std::string& s)
 {
     std::size_t a = 0, b = s.size();
@@ -94,33 +67,6 @@ std::string leafType(const Tags& tags, const std::string& fallback)
     return fallback;
 }
 } // namespace
-
-bool parseHstore(const std::string& text, Tags& tags)
-{
-    std::size_t i = 0;
-    for (;;)
-    {
-        skipSpace(text, i);
-        if (i >= text.size()) return true;
-        std::string key, value;
-        if (!readQuoted(text, i, key)) return false;
-        skipSpace(text, i);
-        if (text.compare(i, 2, "=>") != 0) return false;
-        i += 2;
-        skipSpace(text, i);
-        if (text.compare(i, 4, "NULL") == 0)
-            i += 4;
-        else
-        {
-            if (!readQuoted(text, i, value)) return false;
-            tags.emplace(key, value);
-        }
-        skipSpace(text, i);
-        if (i >= text.size()) return true;
-        if (text[i] != ',') return false;
-        ++i;
-    }
-}
 
 bool parseNumber(const std::string& text, double& value)
 {

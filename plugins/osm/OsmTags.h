@@ -1,4 +1,4 @@
-// OpenStreetMap tags: the hstore text of OGR's other_tags column, lengths with units, and the
+// OpenStreetMap tags: lengths with units, and the
 // mapping from tags to the feature taxonomy (docs/osm.md has the table).
 #ifndef OSGLOA_PLUGINS_OSM_OSMTAGS_H
 #define OSGLOA_PLUGINS_OSM_OSMTAGS_H 1
@@ -12,12 +12,6 @@ namespace osmimport
 {
 
 using Tags = std::map<std::string, std::string>;
-
-/** Parses PostgreSQL hstore text as OGR's OSM driver writes other_tags:
- *  "k"=>"v","k2"=>"v2" with \" and \\ escapes inside the quotes (NULL values are skipped).
- *  Adds the pairs to tags (existing keys are kept). Returns false when the text is malformed;
- *  the pairs before the fault are kept. */
-bool parseHstore(const std::string& text, Tags& tags);
 
 /** A length such as "12", "12.5 m", "12,5", "40 ft", "40'", "12'6\"", "350 cm"; metres.
  *  Returns false (and leaves metres alone) for text that is no non-negative length. */

@@ -1,47 +1,33 @@
-// libFuzzer target: arbitrary bytes as an OpenStreetMap file, in process (issue 22 item 5). The
-// OSM importer's sources are compiled into the fuzzer, so its reader registers itself with osgDB
-// (REGISTER_OSGPLUGIN) and osgDB reads the input through it as osgconv would, within the default
-// InputLimits. The first input byte chooses the form (its value modulo 3): 0, XML (map.osm);
-// 1, the rest compressed with bzip2 here (map.osm.bz2), so that the fuzzer's mutations of the XML
-// reach the inflater and the XML path both; 2, the rest is a .osm.bz2 file as it is (a bzip2
-// bomb: tests/fuzz/crashes/osm/). A read
-// must succeed or fail with a message; the scene is validated (osgLoA::ModelValidation) and its
-// bound must be finite. Seed corpus: tests/fuzz/corpus/osm.
+// libFuzzer target: arbitrary bytes as an OpenStreetMap file, in process (issue 22 item 5), through
+// the steps osgdb_osm takes after it has read the file's bytes: inflateBz2 for .osm.bz2,
+// readOsmFile (libosmium's XML parser, our element collector and multipolygon assembly) and
+// buildScene, within the default InputLimits but max-inflated=50000000. The first input byte
+// chooses the form (its value modulo 3): 0, XML; 1, the rest compressed with bzip2 here, so that
+// the fuzzer's mutations of the XML reach the inflater and the XML path both; 2, the rest is
+// .osm.bz2 data as it is (a bzip2 bomb: tests/fuzz/crashes/osm/). A read must succeed or fail
+// with an exception (the plugin's message); the scene is validated (osgLoA::ModelValidation) and
+// its bound must be finite. Seed corpus: tests/fuzz/corpus/osm. The file reading itself (the
+// plugin's readWhole, libosmium's read thread for a plain .osm) is not fuzzed: it does not look
+// at the bytes.
 //
 // Build and run: scripts/fuzz (FUZZ_TARGETS=OsmFuzzer).
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Notify>
-#include <osgDB/Registry>
+
+#include "../../plugins/osm/OsmFile.h"
+#include "../../plugins/osm/OsmScene.h"
+#include "FuzzSupport.h"
 
 #include <bzlib.h>
-#include <cmath>
-#include <cpl_conv.h>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include <exception>
 #include <string>
-#include <unistd.h>
 #include <vector>
-
-namespace
-{
-std::string scratch(const char* name)
-{
-    const char* tmp = std::getenv("TMPDIR");
-    return std::string(tmp && *tmp ? tmp : "/tmp") + "/osgloa-osmfuzz-" + std::to_string(::getpid()) + "-" +
-           name;
-}
-} // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
     osg::setNotifyLevel(osg::FATAL);
-    // GDAL's OSM driver sets up a 100 MB in-memory node index per file by default; a small one
-    // (spilling to a temporary file beyond 1 MB, which a fuzz input never reaches) is what
-    // makes thousands of opens a minute possible.
-    CPLSetConfigOption("OSM_MAX_TMPFILE_SIZE", "1");
     return 0;
 }
 
@@ -49,8 +35,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
     if (size < 1) return 0;
     const int form = data[0] % 3;
-    std::string bytes(reinterpret_cast<const char*>(data + 1), size - 1);
-    const std::string path = scratch(form ? "map.osm.bz2" : "map.osm");
+    std::vector<char> bytes(reinterpret_cast<const char*>(data + 1),
+                            reinterpret_cast<const char*>(data + size));
     if (form == 1)
     {
         std::vector<char> out(bytes.size() + bytes.size() / 100 + 700);
@@ -58,21 +44,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (BZ2_bzBuffToBuffCompress(out.data(), &outSize, bytes.data(),
                                      static_cast<unsigned int>(bytes.size()), 1, 0, 0) != BZ_OK)
             return 0;
-        bytes.assign(out.data(), outSize);
+        out.resize(outSize);
+        bytes.swap(out);
     }
-    std::ofstream(path, std::ios::binary) << bytes;
-    osg::ref_ptr<osgDB::Options> options = new osgDB::Options("max-inflated=50000000");
-    osgDB::ReaderWriter::ReadResult rr = osgDB::Registry::instance()->readNode(path, options.get());
-    std::remove(path.c_str());
-    if (!rr.validNode())
+    const osgLoA::InputLimits limits = osgLoA::InputLimits::fromOptions("max-inflated=50000000");
+    osg::ref_ptr<osg::Group> scene;
+    try
     {
-        if (rr.message().empty() && rr.status() != osgDB::ReaderWriter::ReadResult::FILE_NOT_HANDLED &&
-            rr.status() != osgDB::ReaderWriter::ReadResult::FILE_NOT_FOUND)
-            std::abort(); // a failure must say why
+        std::vector<char> xml =
+            form ? osmimport::inflateBz2(bytes, "<fuzz>.osm.bz2", limits) : std::move(bytes);
+        osmimport::OsmSource source;
+        source.name = "<fuzz>";
+        source.data = &xml;
+        osmimport::ReadReport read;
+        std::vector<osmimport::OsmObject> objects = osmimport::readOsmFile(source, limits, read);
+        osmimport::ImportReport report;
+        scene = osmimport::buildScene(objects, osmimport::ImportOptions(), report);
+    }
+    catch (const std::exception& e)
+    {
+        if (!*e.what()) fuzz::fail("OsmFuzzer", "an error without a message"); // a failure must say why
         return 0;
     }
-    osgLoA::ModelValidation::validate(*rr.getNode(), path);
-    const osg::BoundingSphere bs = rr.getNode()->getBound();
-    if (bs.valid() && !(std::isfinite(bs.radius()) && std::isfinite(bs.center().length()))) std::abort();
+    osgLoA::ModelValidation::validate(*scene, "<fuzz>");
+    fuzz::requireFiniteBound("OsmFuzzer", *scene);
     return 0;
 }

@@ -1,13 +1,11 @@
 // libFuzzer target: the OpenStreetMap importer's own code, fed OSM objects decoded straight from
-// the input (GDAL's OSM driver, which OsmFuzzer goes through at a few dozen inputs a second,
-// left out): tag parsing and classification (OsmTags), footprints, ribbons, trees, ground and
-// their clamps (OsmScene::buildScene), at thousands of inputs a second (issue 22 item 5). The
-// scene is validated (ModelValidation) and its bound must be finite.
+// the input (the file reader, which OsmFuzzer goes through, left out): tag parsing and classification
+// (OsmTags), footprints, ribbons, trees, ground and their clamps (OsmScene::buildScene), at thousands of
+// inputs a second (issue 22 item 5). The scene is validated (ModelValidation) and its bound must be finite.
 //
 // Input: text lines. "node", "way" or "area" starts an object of that geometry; in an area,
-// "ring" starts a hole and "poly" another polygon; a line with '=' adds the tag key=value (as
-// OGR hands tags over, the text after the first '='); "hstore TEXT" adds tags from hstore text
-// (OGR's other_tags: "k"=>"v",...); any other line is numbers, lon lat pairs (strtod: "nan",
+// "ring" starts a hole and "poly" another polygon; a line with '=' adds the tag key=value (the
+// text after the first '=' is the value); any other line is numbers, lon lat pairs (strtod: "nan",
 // "inf" and "1e308" included) appended to the current line or ring.
 //
 // Build and run: scripts/fuzz (FUZZ_TARGETS=OsmSceneFuzzer). Seed corpus: tests/fuzz/corpus/osmscene.
@@ -56,8 +54,6 @@ std::vector<osmimport::OsmObject> decode(const std::string& text)
             o.polygons.back().emplace_back();
         else if (word == "poly" && o.geometry == OsmObject::Area)
             o.polygons.emplace_back(1);
-        else if (word == "hstore")
-            osmimport::parseHstore(line.size() > 7 ? line.substr(7) : std::string(), o.tags);
         else if (line.find('=') != std::string::npos)
             o.tags.emplace(line.substr(0, line.find('=')), line.substr(line.find('=') + 1));
         else

@@ -53,8 +53,8 @@ osgloa_fuzz_target(CityJsonFuzzer cityjson
                    SOURCES ${PROJECT_SOURCE_DIR}/plugins/cityjson/CityJsonReader.cpp
                    LIBS nlohmann_json::nlohmann_json)
 osgloa_fuzz_target(OsmFuzzer osm
-                   SOURCES ${_osm}/ReaderWriterOsm.cpp ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp
-                   LIBS GDAL::GDAL BZip2::BZip2)
+                   SOURCES ${_osm}/OsmFile.cpp ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp
+                   LIBS GDAL::GDAL BZip2::BZip2 osgLoA_osmium)
 osgloa_fuzz_target(OsmSceneFuzzer osmscene
                    SOURCES ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp LIBS GDAL::GDAL)
 osgloa_fuzz_target(ModelFuzzer model)

@@ -87,10 +87,6 @@ write('corpus/osmscene/town.txt',
       'way\nwaterway=river\n10.999 48.002 11.003 48.0025\n'
       'node\nnatural=tree\n11.0005 48.0005\n'
       'area\nnatural=water\n11.0025 48.0 11.003 48.0 11.003 48.0004 11.0025 48.0\n')
-write('corpus/osmscene/hstore.txt',
-      'area\nhstore "building"=>"house","height"=>"12 m","roof:shape"=>"gabled"\n'
-      '11.0 48.0 11.0001 48.0 11.0001 48.0001 11.0 48.0001 11.0 48.0\n'
-      'way\nhstore "highway"=>"primary","width"=>"12\'6\\""\n11.0 48.0 11.001 48.0\n')
 write('crashes/osmscene/non-finite-coordinates.txt',
       'area\nbuilding=yes\n11.0 48.0 inf 48.0 11.0002 nan 11.0 48.0002 11.0 48.0\n'
       'way\nhighway=primary\n1e308 48.0 -1e308 48.0\nnode\nnatural=tree\nnan nan\n')

@@ -1,0 +1,363 @@
+#include "OsmFile.h"
+
+#include <osgDB/FileNameUtils>
+
+// GCC 12 reports a strlen over-read inside libosmium 2.19's OSMObjectBuilder::set_user
+// (osm_object_builder.hpp:473, inlined into the Assembler here): a false positive in its code.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wstringop-overread"
+#endif
+#include <osmium/area/assembler.hpp>
+#include <osmium/handler.hpp>
+#include <osmium/handler/node_locations_for_ways.hpp>
+#include <osmium/index/map/sparse_mem_array.hpp>
+#include <osmium/io/pbf_input.hpp>
+#include <osmium/io/xml_input.hpp>
+#include <osmium/relations/relations_manager.hpp>
+#include <osmium/visitor.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+#include <bzlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace osmimport
+{
+namespace
+{
+/** osmconf.ini's "ignore" keys (every layer): dropped from an object's tags. Keys ending in ':'
+ *  are prefixes. */
+const char* const kIgnored[] = {"created_by", "converted_by", "source",     "time",  "ele",
+                                "note",       "todo",         "openGeoDB:", "fixme", "FIXME"};
+/** osmconf.ini's [points] "unsignificant" keys: a node with no other tag is no point. */
+const char* const kUnsignificant[] = {"created_by", "converted_by", "source", "time", "ele", "attribution"};
+
+bool ignored(const char* key, bool area)
+{
+    if (area && std::strcmp(key, "area") == 0) return true; // [multipolygons] ignores area too
+    for (const char* k : kIgnored)
+    {
+        const std::size_t n = std::strlen(k);
+        if (k[n - 1] == ':' ? std::strncmp(key, k, n) == 0 : std::strcmp(key, k) == 0) return true;
+    }
+    return false;
+}
+
+Tags tagsOf(const osmium::TagList& list, bool area)
+{
+    Tags tags;
+    for (const osmium::Tag& t : list)
+        if (!ignored(t.key(), area)) tags.emplace(t.key(), t.value());
+    return tags;
+}
+
+bool significantNode(const osmium::TagList& list)
+{
+    for (const osmium::Tag& t : list)
+    {
+        if (ignored(t.key(), false)) continue;
+        if (std::none_of(std::begin(kUnsignificant), std::end(kUnsignificant),
+                         [&](const char* k) { return std::strcmp(k, t.key()) == 0; }))
+            return true;
+    }
+    return false;
+}
+
+/** A defined location as (lon, lat); range checks are the scene builder's (it names the object). */
+osg::Vec2d lonLat(const osmium::Location& l)
+{
+    return {l.lon_without_check(), l.lat_without_check()};
+}
+
+template <typename Nodes> Ring ringOf(const Nodes& nodes)
+{
+    Ring r;
+    r.reserve(nodes.size());
+    for (const osmium::NodeRef& n : nodes)
+        if (!n.location().is_undefined()) r.push_back(lonLat(n.location()));
+    return r;
+}
+
+/** Multipolygon and boundary relations with at least one way member, assembled by libosmium's
+ *  Assembler once every member way has been read (GDAL made no area of an incomplete one
+ *  either). The areas go to the callback given to handler(). */
+class MultipolygonRelations
+    : public osmium::relations::RelationsManager<MultipolygonRelations, false, true, false>
+{
+public:
+    explicit MultipolygonRelations(ReadReport& report) : _report(report) {}
+
+    bool new_relation(const osmium::Relation& relation) const
+    {
+        const char* type = relation.tags().get_value_by_key("type");
+        if (!type || (std::strcmp(type, "multipolygon") != 0 && std::strcmp(type, "boundary") != 0))
+            return false;
+        return std::any_of(relation.members().cbegin(), relation.members().cend(),
+                           [](const osmium::RelationMember& m)
+                           { return m.type() == osmium::item_type::way; });
+    }
+    bool new_member(const osmium::Relation&, const osmium::RelationMember& member, std::size_t) const
+    {
+        return member.type() == osmium::item_type::way;
+    }
+    void complete_relation(const osmium::Relation& relation)
+    {
+        std::vector<const osmium::Way*> ways;
+        for (const osmium::RelationMember& m : relation.members())
+            if (m.ref() != 0) ways.push_back(get_member_way(m.ref()));
+        osmium::area::Assembler::config_type config;
+        config.create_empty_areas = false;
+        try
+        {
+            osmium::area::Assembler assembler{config};
+            if (!assembler(relation, ways, buffer())) ++_report.unassembled;
+        }
+        catch (const osmium::invalid_location&)
+        {
+            ++_report.unassembled; // a member node missing from the file
+        }
+    }
+
+private:
+    ReadReport& _report;
+};
+
+/** The second pass: points, lines and closed-way areas from nodes and ways (their locations set
+ *  by NodeLocationsForWays before), relation areas from the MultipolygonRelations callback. */
+class ObjectCollector : public osmium::handler::Handler
+{
+public:
+    ObjectCollector(std::vector<OsmObject>& objects, const osgLoA::InputLimits& limits,
+                    const std::string& file, ReadReport& report)
+        : _objects(objects), _limits(limits), _file(file), _report(report)
+    {
+    }
+
+    void node(const osmium::Node& node)
+    {
+        ++_report.nodes;
+        if (_report.ways || _report.relations)
+            throw std::runtime_error("node " + std::to_string(node.id()) +
+                                     " comes after ways or relations; OSM files list nodes, then ways, then "
+                                     "relations (`osmium sort` puts a file in that order)");
+        if (!significantNode(node.tags()) || node.location().is_undefined()) return;
+        OsmObject o;
+        o.geometry = OsmObject::Point;
+        o.sourceId = "node/" + std::to_string(node.id());
+        o.tags = tagsOf(node.tags(), false);
+        o.line.push_back(lonLat(node.location()));
+        add(std::move(o), 1);
+    }
+
+    void way(const osmium::Way& way)
+    {
+        ++_report.ways;
+        if (_report.relations)
+            throw std::runtime_error(
+                "way " + std::to_string(way.id()) +
+                " comes after relations; OSM files list nodes, then ways, then relations "
+                "(`osmium sort` puts a file in that order)");
+        Tags t = tagsOf(way.tags(), false);
+        if (t.empty()) return; // an untagged way (a multipolygon's member): nothing to classify
+        Ring r = ringOf(way.nodes());
+        if (r.size() < 2)
+        {
+            ++_report.shortWays; // GDAL's OSM driver dropped these too
+            return;
+        }
+        OsmObject o;
+        o.sourceId = "way/" + std::to_string(way.id());
+        const std::size_t n = r.size();
+        if (way.nodes().size() >= 4 && way.is_closed() && closedWayIsArea(t))
+        {
+            o.geometry = OsmObject::Area;
+            t.erase("area");
+            o.polygons.push_back(Polygon{std::move(r)});
+        }
+        else
+        {
+            o.geometry = OsmObject::Line;
+            o.line = std::move(r);
+        }
+        o.tags = std::move(t);
+        add(std::move(o), n);
+    }
+
+    void relation(const osmium::Relation&) { ++_report.relations; }
+
+    void area(const osmium::Area& area)
+    {
+        OsmObject o;
+        o.geometry = OsmObject::Area;
+        o.sourceId = "relation/" + std::to_string(area.orig_id());
+        o.tags = tagsOf(area.tags(), true); // the relation's tags but type (GDAL kept type)
+        std::size_t n = 0;
+        for (const osmium::OuterRing& outer : area.outer_rings())
+        {
+            Polygon p{ringOf(outer)};
+            for (const osmium::InnerRing& inner : area.inner_rings(outer))
+                p.push_back(ringOf(inner));
+            for (const Ring& r : p)
+                n += r.size();
+            o.polygons.push_back(std::move(p));
+        }
+        if (!o.polygons.empty()) add(std::move(o), n);
+    }
+
+private:
+    void add(OsmObject&& o, std::size_t vertices)
+    {
+        _vertices += vertices;
+        if (_vertices > _limits.maxVertices)
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                _file, "more than " + std::to_string(_limits.maxVertices) + " vertices", "max-vertices",
+                _limits.maxVertices));
+        _objects.push_back(std::move(o));
+        if (_objects.size() > _limits.maxObjects)
+            throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                _file, "more than " + std::to_string(_limits.maxObjects) + " OpenStreetMap elements",
+                "max-objects", _limits.maxObjects));
+    }
+
+    std::vector<OsmObject>& _objects;
+    const osgLoA::InputLimits& _limits;
+    const std::string& _file;
+    ReadReport& _report;
+    std::uint64_t _vertices = 0;
+};
+
+osmium::io::File fileOf(const OsmSource& source)
+{
+    if (source.data) return osmium::io::File(source.data->data(), source.data->size(), "osm");
+    // The format by the osgDB extension (osmium would look at the name's suffixes, case and all).
+    const std::string lower = osgDB::convertToLowerCase(source.path);
+    const bool pbf = lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".pbf") == 0;
+    return osmium::io::File(source.path, pbf ? "pbf" : "osm");
+}
+} // namespace
+
+std::vector<char> inflateBz2(const std::vector<char>& compressed, const std::string& name,
+                             const osgLoA::InputLimits& limits)
+{
+    if (compressed.empty()) throw std::runtime_error("'" + name + "' is empty, not a bzip2 file");
+    std::vector<char> out;
+    std::size_t consumed = 0;
+    char chunk[1 << 16];
+    do // one bzip2 stream per round
+    {
+        bz_stream z{};
+        if (BZ2_bzDecompressInit(&z, 0, 0) != BZ_OK) throw std::runtime_error("bzip2: out of memory");
+        int rc = BZ_OK;
+        for (;;)
+        {
+            if (z.avail_in == 0 && consumed < compressed.size())
+            {
+                const std::size_t n = std::min<std::size_t>(compressed.size() - consumed, 1u << 30);
+                z.next_in = const_cast<char*>(compressed.data() + consumed);
+                z.avail_in = static_cast<unsigned>(n);
+                consumed += n;
+            }
+            z.next_out = chunk;
+            z.avail_out = sizeof chunk;
+            rc = BZ2_bzDecompress(&z);
+            const std::size_t n = sizeof chunk - z.avail_out;
+            if (out.size() + n > limits.maxInflatedBytes)
+            {
+                BZ2_bzDecompressEnd(&z);
+                throw osgLoA::InputLimitError(osgLoA::InputLimits::exceeded(
+                    name,
+                    "bzip2 data inflating to more than " + std::to_string(limits.maxInflatedBytes) + " bytes",
+                    "max-inflated", limits.maxInflatedBytes));
+            }
+            out.insert(out.end(), chunk, chunk + n);
+            if (rc != BZ_OK || (n == 0 && z.avail_in == 0 && consumed == compressed.size())) break;
+        }
+        consumed -= z.avail_in; // what the stream did not use starts the next one
+        BZ2_bzDecompressEnd(&z);
+        if (rc != BZ_STREAM_END)
+            throw std::runtime_error("'" + name + "' is " +
+                                     (rc == BZ_DATA_ERROR_MAGIC && out.empty()
+                                          ? std::string("not a bzip2 file")
+                                      : rc == BZ_OK ? std::string("not valid bzip2 data (cut short)")
+                                                    : std::string("not valid bzip2 data")));
+    } while (consumed < compressed.size());
+    if (out.empty()) throw std::runtime_error("'" + name + "' is not valid bzip2 data (nothing in it)");
+    return out;
+}
+
+bool closedWayIsArea(const Tags& tags)
+{
+    const auto area = tags.find("area");
+    if (area != tags.end())
+    {
+        if (area->second == "yes") return true;
+        if (area->second == "no") return false;
+    }
+    static const char* const keys[] = {"aeroway",  "amenity", "boundary", "building", "craft",   "geological",
+                                       "historic", "landuse", "leisure",  "military", "natural", "office",
+                                       "place",    "shop",    "sport",    "tourism"};
+    for (const char* k : keys)
+        if (tags.count(k)) return true;
+    const auto is = [&](const char* k, const char* v)
+    {
+        const auto it = tags.find(k);
+        return it != tags.end() && it->second == v;
+    };
+    return is("highway", "platform") || is("public_transport", "platform");
+}
+
+std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputLimits& limits,
+                                   ReadReport& report)
+{
+    std::vector<OsmObject> objects;
+    try
+    {
+        const osmium::io::File file = fileOf(source);
+        MultipolygonRelations relations(report);
+        osmium::relations::read_relations(file, relations);
+
+        using Index = osmium::index::map::SparseMemArray<osmium::unsigned_object_id_type, osmium::Location>;
+        Index positive, negative; // JOSM's new objects have negative ids
+        osmium::handler::NodeLocationsForWays<Index, Index> locations(positive, negative);
+        locations.ignore_errors(); // a node missing from an extract: the way keeps the others
+
+        ObjectCollector collector(objects, limits, source.name, report);
+        osmium::io::Reader reader(file, osmium::io::read_meta::no);
+        osmium::apply(reader, locations, collector,
+                      relations.handler([&collector](osmium::memory::Buffer&& areas)
+                                        { osmium::apply(areas, collector); }));
+        reader.close();
+        relations.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&)
+                                               { ++report.incompleteRelations; });
+    }
+    catch (const osgLoA::InputLimitError&)
+    {
+        throw;
+    }
+    catch (const osmium::xml_error& e)
+    {
+        // expat's errors have a position (at 1:0, no XML at all: not OSM); libosmium's own (an
+        // element where it does not belong) have none ("Unknown top-level element": not OSM).
+        const bool positioned = e.line > 0;
+        const bool notOsm =
+            positioned ? e.line == 1 && e.column == 0 : e.error_string.rfind("Unknown top-level", 0) == 0;
+        const std::string what = positioned ? "XML error at line " + std::to_string(e.line) + ", column " +
+                                                  std::to_string(e.column) + ": " + e.error_string
+                                            : "XML error: " + e.error_string;
+        throw std::runtime_error(
+            "'" + source.name + "' " +
+            (notOsm ? "is not an OpenStreetMap file (" + what + ")" : "is malformed: " + what));
+    }
+    catch (const std::exception& e)
+    {
+        throw std::runtime_error("'" + source.name + "' is malformed: " + e.what());
+    }
+    return objects;
+}
+
+} // namespace osmimport
