@@ -17,10 +17,13 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstring>
 #include <regex>
 #include <string>
+#include <thread>
+#include <vector>
 
 using osgLoA::BoundedObjectReader;
 using osgLoA::MalformedFileError;
@@ -119,6 +122,29 @@ TEST(BoundedObjectReaderTest, NestingPastTheLimitIsRefusedAndTheDeepestSceneRead
     const std::string binary = errorOf(loatest::fileBytes(dir + "/chain.osgb"), &seconds);
     EXPECT_NE(binary.find("objects nested deeper than 8448 levels"), std::string::npos) << binary;
     EXPECT_LT(seconds, 2.0);
+}
+
+// Each calling thread has one reading thread of its own, made on its first read and kept: reads
+// from several threads at once, and deep reads one after another on one thread, all succeed (the
+// fork() of a process that has one is ScenarioSerializationTest's readInChild).
+TEST(BoundedObjectReaderTest, ReadsFromSeveralThreadsAndOneAfterAnother)
+{
+    const std::string text = chainText(200);
+    std::atomic<int> read{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back(
+            [&]
+            {
+                for (int i = 0; i < 5; ++i)
+                    if (BoundedObjectReader::readNode(text, nullptr).valid()) ++read;
+            });
+    for (std::thread& t : threads)
+        t.join();
+    EXPECT_EQ(read.load(), 20);
+    const std::string deepest = chainText(int(osgLoA::ModelValidation::MAX_SCENE_DEPTH));
+    for (int i = 0; i < 3; ++i)
+        EXPECT_TRUE(BoundedObjectReader::readNode(deepest, nullptr).valid()) << "read " << i;
 }
 
 // OSG's InputStream::readImage returns the object a UniqueID names, cast to osg::Image without a

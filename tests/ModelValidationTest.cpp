@@ -210,6 +210,32 @@ TEST(ModelValidationTest, NonFiniteNumbersInTextAreRefused)
               "");
 }
 
+// The scan's edges (it runs from delimiter to delimiter): escapes, control characters inside and
+// outside strings, a NUL inside the text, a backslash at the very end; and a real model passes.
+TEST(ModelValidationTest, TextScanEdges)
+{
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"a\\\"b\" }"), "");
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"a\x01"
+                                             "b\" }"),
+              "the text contains the control character 0x1 at byte 20");
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group {\x1f}"),
+              "the text contains the control character 0x1f at byte 12");
+    EXPECT_EQ(ModelValidation::checkOsgtText(std::string("osg::Group {\0}", 14)),
+              "the text contains the control character 0x0 at byte 12");
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"ab\\"),
+              "the text ends inside a quoted string");
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { Name \"a\\\x01\" }"),
+              ""); // escaped: as OSG reads it
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group {\tA 1\r\n}\n"), "");
+    EXPECT_EQ(ModelValidation::checkOsgtText("osg::Group { } x"),
+              "the text does not end with its last object's '}'");
+    EXPECT_EQ(ModelValidation::checkOsgtText("nan"),
+              "the text holds a number that is not finite ('nan' at byte 0)");
+    EXPECT_EQ(ModelValidation::checkOsgtText(
+                  loatest::fileBytes(std::string(LOA_SOURCE_DIR) + "/data/test-scenes/opencity-block.osgt")),
+              "");
+}
+
 // Third-party chatter is collapsed (issue 22 item 3): OSG warns once per unknown object, and a
 // model of 50 of them printed 50 identical lines; a tool shows a repeated line twice, then counts.
 TEST(ModelValidationTest, RepeatedNoticesAreCounted)

@@ -2,8 +2,10 @@
 #include <osgLoA/transitions/UsageScenario>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace osgLoA
 {
@@ -101,7 +103,21 @@ UsageScenario::Validation UsageScenario::validate() const
     }
     // Gaps: for each type and static interest, the configurations in scope; when they all use
     // the same metrics (so one interest axis is shared), interest values where every weight is
-    // 0 leave those features undrawn.
+    // 0 leave those features undrawn. A configuration's weights at the 1,001 interest samples are
+    // computed once, not once per type and static interest (55 times: most of a validation).
+    std::map<const TransitionConfiguration*, std::vector<float>> sampled;
+    const auto weights = [&sampled](const TransitionConfiguration* c) -> const std::vector<float>&
+    {
+        auto it = sampled.find(c);
+        if (it == sampled.end())
+        {
+            std::vector<float> w(1001);
+            for (int k = 0; k <= 1000; ++k)
+                w[k] = c->getBlendFunction().weight(k / 1000.0f);
+            it = sampled.emplace(c, std::move(w)).first;
+        }
+        return it->second;
+    };
     for (FeatureType t : kFeatureTypes)
         for (int si = 0; si <= 10 && drawn.count(t); ++si)
         {
@@ -123,12 +139,15 @@ UsageScenario::Validation UsageScenario::validate() const
                              [&](const TransitionConfiguration* c)
                              { return c->hasSameInterestAs(*inScope.front()); }))
                 continue;
+            std::vector<const std::vector<float>*> drawing;
+            for (const TransitionConfiguration* c : inScope)
+                if (c->getStyle() != "hidden") drawing.push_back(&weights(c));
             int gapBegin = -1;
             for (int k = 0; k <= 1000; ++k)
             {
                 float sum = 0.0f;
-                for (const TransitionConfiguration* c : inScope)
-                    if (c->getStyle() != "hidden") sum += c->getBlendFunction().weight(k / 1000.0f);
+                for (const std::vector<float>* w : drawing)
+                    sum += (*w)[k];
                 if (sum <= 0.0f && gapBegin < 0) gapBegin = k;
                 if ((sum > 0.0f || k == 1000) && gapBegin >= 0)
                 {

@@ -15,6 +15,7 @@
 #include <malloc.h>
 #include <set>
 #include <sstream>
+#include <strings.h>
 #include <unordered_map>
 
 namespace osgLoA
@@ -398,62 +399,76 @@ std::string ModelValidation::checkOsgtStructure(const std::string& path)
 
 std::string ModelValidation::checkOsgtText(const std::string& text)
 {
+    // One pass, in runs: a table lookup per character skips the word characters between
+    // delimiters and the plain characters inside strings (the text is NUL-terminated, and NUL is
+    // a stop: a NUL inside the text ends a run and is refused below as a control character). Per
+    // character the loop used to make half a dozen comparisons, each a callback under the
+    // fuzzers' coverage instrumentation.
+    struct Stops
+    {
+        bool outside[256] = {}, inString[256] = {};
+        Stops()
+        {
+            for (int c = 0; c < 0x20; ++c)
+                outside[c] = inString[c] = c != '\t' && c != '\n' && c != '\r';
+            for (unsigned char c : {' ', '\t', '\n', '\r', '{', '}', '"'})
+                outside[c] = true;
+            inString[static_cast<unsigned char>('"')] = inString[static_cast<unsigned char>('\\')] = true;
+        }
+    };
+    static const Stops stops;
+    const char* const p = text.c_str();
+    const std::size_t n = text.size();
     bool inString = false, sawObject = false;
     long depth = 0;
     char last = 0;
     // A word outside strings that spells a non-finite number: OSG's text reader takes "nan" and
     // "inf" as 0 (a scenario's "Near nan" validated as 0), so they are refused here.
-    std::size_t wordStart = 0;
-    bool inWord = false;
-    const auto nonFinite = [&](std::size_t end) -> std::string
+    const auto nonFinite = [&](std::size_t start, std::size_t end) -> std::string
     {
-        // Without copying the word (this runs once per word of every text read).
-        std::size_t b = wordStart;
-        if (b < end && (text[b] == '-' || text[b] == '+')) ++b;
-        const std::size_t n = end - b;
-        const auto is = [&](const char* w, std::size_t len)
-        {
-            for (std::size_t k = 0; k < len; ++k)
-                if (std::tolower(static_cast<unsigned char>(text[b + k])) != w[k]) return false;
-            return true;
-        };
-        if (n < 3 || ((text[b] | 0x20) != 'n' && (text[b] | 0x20) != 'i')) return std::string();
-        if ((n == 3 && (is("nan", 3) || is("inf", 3))) || (n == 8 && is("infinity", 8)) ||
-            (n >= 4 && is("nan(", 4)))
-            return "the text holds a number that is not finite ('" + text.substr(wordStart, end - wordStart) +
-                   "' at byte " + std::to_string(wordStart) + ")";
+        std::size_t b = start;
+        if (b < end && (p[b] == '-' || p[b] == '+')) ++b;
+        const std::size_t len = end - b;
+        if (len < 3 || ((p[b] | 0x20) != 'n' && (p[b] | 0x20) != 'i')) return std::string();
+        const auto is = [&](const char* w, std::size_t k) { return strncasecmp(p + b, w, k) == 0; };
+        if ((len == 3 && (is("nan", 3) || is("inf", 3))) || (len == 8 && is("infinity", 8)) ||
+            (len >= 4 && is("nan(", 4)))
+            return "the text holds a number that is not finite ('" + text.substr(start, end - start) +
+                   "' at byte " + std::to_string(start) + ")";
         return std::string();
     };
-    for (std::size_t i = 0; i < text.size(); ++i)
+    std::size_t i = 0;
+    for (;;)
     {
-        const char c = text[i];
-        if (!inString)
-        {
-            const bool wordChar =
-                !std::isspace(static_cast<unsigned char>(c)) && c != '{' && c != '}' && c != '"';
-            if (wordChar && !inWord) inWord = true, wordStart = i;
-            if (!wordChar && inWord)
-            {
-                inWord = false;
-                const std::string bad = nonFinite(i);
-                if (!bad.empty()) return bad;
-            }
-        }
-        const unsigned char u = static_cast<unsigned char>(c);
-        if (u < 0x20 && c != '\t' && c != '\n' && c != '\r')
+        const bool* const stop = inString ? stops.inString : stops.outside;
+        std::size_t at = i; // the delimiter, or n
+        while (!stop[static_cast<unsigned char>(p[at])])
+            ++at;
+        const std::size_t run = at - i;
+        const unsigned char u = static_cast<unsigned char>(p[at]);
+        if (at < n && u < 0x20 && u != '\t' && u != '\n' && u != '\r')
         {
             // OSG's reader can loop on them too, and no writer puts them in a text file.
             std::ostringstream s;
             s << "the text contains the control character 0x" << std::hex << int(u) << " at byte " << std::dec
-              << i;
+              << at;
             return s.str();
         }
+        if (!inString && run > 0)
+        {
+            last = p[at - 1];
+            const std::string bad = nonFinite(i, at);
+            if (!bad.empty()) return bad;
+        }
+        i = at;
+        if (i >= n) break;
+        const char c = p[i];
         if (inString)
         {
             if (c == '\\')
-                ++i; // an escaped character
-            else if (c == '"')
-                inString = false;
+                i = std::min(i + 2, n); // an escaped character, whatever it is
+            else
+                inString = false, ++i; // the closing quote
             continue;
         }
         if (c == '"')
@@ -462,12 +477,8 @@ std::string ModelValidation::checkOsgtText(const std::string& text)
             ++depth, sawObject = true;
         else if (c == '}' && --depth < 0)
             return "a '}' closes no object";
-        if (!std::isspace(static_cast<unsigned char>(c))) last = c;
-    }
-    if (inWord)
-    {
-        const std::string bad = nonFinite(text.size());
-        if (!bad.empty()) return bad;
+        if (c != ' ' && c != '\t' && c != '\n' && c != '\r') last = c;
+        ++i;
     }
     if (inString) return "the text ends inside a quoted string";
     if (depth != 0) return "the text ends inside an object ('{' and '}' do not match)";

@@ -54,9 +54,9 @@ osgloa_fuzz_target(CityJsonFuzzer cityjson
                    LIBS nlohmann_json::nlohmann_json)
 osgloa_fuzz_target(OsmFuzzer osm
                    SOURCES ${_osm}/OsmFile.cpp ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp
-                   LIBS GDAL::GDAL BZip2::BZip2 osgLoA_osmium)
+                   LIBS GDAL::GDAL PROJ::proj BZip2::BZip2 osgLoA_osmium)
 osgloa_fuzz_target(OsmSceneFuzzer osmscene
-                   SOURCES ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp LIBS GDAL::GDAL)
+                   SOURCES ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp LIBS GDAL::GDAL PROJ::proj)
 osgloa_fuzz_target(ModelFuzzer model)
 osgloa_fuzz_target(RuleSetFuzzer rules)
 osgloa_fuzz_target(LoaFileFuzzer loa)
