@@ -6,10 +6,13 @@
 #include "support/TestSupport.h"
 
 #include <osgLoA/transitions/ScenarioLibrary>
+#include <osgLoA/util/BoundedObjectReader>
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Geode>
 #include <osg/Geometry>
+#include <osg/MatrixTransform>
+#include <osg/PositionAttitudeTransform>
 #include <osg/Texture2D>
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
@@ -21,6 +24,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -336,6 +340,57 @@ TEST(ModelValidationTest, CyclesAndExcessiveDepthAreRefused)
     EXPECT_NE(out.find("the scene graph has a cycle: osg::Group 'block-a' is its own ancestor"),
               std::string::npos)
         << out;
+}
+
+// Numbers that place a whole node: a stored initial bound at infinity (ModelFuzzer, 600 s
+// campaign), a transform's matrix or position that is not finite. Each is reset with a warning
+// naming the node, and the scene's bound is finite; a reproducer from the fuzzer reads likewise.
+TEST(ModelValidationTest, NodesPlacedAtInfinityAreRepaired)
+{
+    const float inf = std::numeric_limits<float>::infinity();
+    const auto triangleGeode = []
+    {
+        osg::ref_ptr<osg::Geode> g = new osg::Geode;
+        g->addDrawable(loatest::triangle("tri").get());
+        return g;
+    };
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    osg::ref_ptr<osg::Group> far = new osg::Group;
+    far->setName("far");
+    far->setInitialBound(osg::BoundingSphere(osg::Vec3(inf, 0, inf), 0));
+    root->addChild(far.get());
+    osg::ref_ptr<osg::MatrixTransform> mt =
+        new osg::MatrixTransform(osg::Matrix::translate(std::nan(""), 0, 0));
+    mt->addChild(triangleGeode().get());
+    root->addChild(mt.get());
+    osg::ref_ptr<osg::PositionAttitudeTransform> pat = new osg::PositionAttitudeTransform;
+    pat->setPosition(osg::Vec3d(0, 1e300, 0));
+    pat->addChild(triangleGeode().get());
+    root->addChild(pat.get());
+    osg::ref_ptr<osg::Geode> box = triangleGeode();
+    box->getDrawable(0)->setInitialBound(osg::BoundingBox(0, 0, 0, inf, 1, 1));
+    root->addChild(box.get());
+    ASSERT_FALSE(std::isfinite(root->getBound().radius()) &&
+                 std::isfinite(root->getBound().center().length()));
+
+    const ModelValidation v = ModelValidation::validate(*root, "placed.osgt");
+    ASSERT_EQ(v.repairedValues.size(), 4u);
+    EXPECT_NE(v.repairedValues[0].find("Group 'far': an initial bound that is not finite"), std::string::npos)
+        << v.repairedValues[0];
+    EXPECT_TRUE(mt->getMatrix().isIdentity());
+    EXPECT_EQ(pat->getPosition(), osg::Vec3d());
+    EXPECT_FALSE(box->getDrawable(0)->getInitialBound().valid());
+    const osg::BoundingSphere bs = root->getBound();
+    EXPECT_TRUE(std::isfinite(bs.radius()) && std::isfinite(bs.center().length()));
+    EXPECT_NEAR(bs.radius(), root->getChild(1)->getBound().radius(), 1.0); // the triangles, ~1 m
+
+    const std::string bytes = loatest::fileBytes(
+        std::string(LOA_SOURCE_DIR) +
+        "/tests/fuzz/crashes/model/infinite-bound-fuzzer-found-initial-bound-at-infinity.osgb");
+    osg::ref_ptr<osg::Node> fuzzed = osgLoA::BoundedObjectReader::readNode(bytes, nullptr);
+    ASSERT_TRUE(fuzzed.valid());
+    EXPECT_EQ(ModelValidation::validate(*fuzzed, "fuzzed.osgb").repairedValues.size(), 1u);
+    EXPECT_FALSE(fuzzed->getBound().valid()); // an empty group: no bound at all, and a finite one
 }
 
 // A texture's wrap or filter mode that is no GL mode: OSG stores any number a file holds in the

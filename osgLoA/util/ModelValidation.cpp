@@ -2,7 +2,9 @@
 
 #include <osg/Geode>
 #include <osg/Geometry>
+#include <osg/MatrixTransform>
 #include <osg/Notify>
+#include <osg/PositionAttitudeTransform>
 #include <osg/StateSet>
 #include <osg/Texture>
 
@@ -262,17 +264,53 @@ public:
     void apply(osg::Node& node) override
     {
         check(node.getStateSet());
+        checkBound(node);
         traverse(node);
+    }
+
+    void apply(osg::MatrixTransform& t) override
+    {
+        if (!finite(t.getMatrix().ptr(), 16))
+        {
+            repaired(t, "a matrix that is not finite", "identity");
+            t.setMatrix(osg::Matrix::identity());
+        }
+        apply(static_cast<osg::Node&>(t));
+    }
+
+    void apply(osg::PositionAttitudeTransform& t) override
+    {
+        const double v[] = {t.getPosition().x(),   t.getPosition().y(),   t.getPosition().z(),
+                            t.getPivotPoint().x(), t.getPivotPoint().y(), t.getPivotPoint().z(),
+                            t.getScale().x(),      t.getScale().y(),      t.getScale().z(),
+                            t.getAttitude().x(),   t.getAttitude().y(),   t.getAttitude().z(),
+                            t.getAttitude().w()};
+        if (!finite(v, 13))
+        {
+            repaired(t, "a position, pivot, scale or attitude that is not finite", "identity");
+            t.setPosition(osg::Vec3d());
+            t.setPivotPoint(osg::Vec3d());
+            t.setScale(osg::Vec3d(1, 1, 1));
+            t.setAttitude(osg::Quat());
+        }
+        apply(static_cast<osg::Node&>(t));
     }
 
     void apply(osg::Geode& geode) override
     {
         check(geode.getStateSet());
+        checkBound(geode);
         for (unsigned i = geode.getNumDrawables(); i-- > 0;)
         {
             osg::Drawable* d = geode.getDrawable(i);
             if (!d) continue;
             check(d->getStateSet());
+            const osg::BoundingBox& ib = d->getInitialBound();
+            if (ib.valid() && !(finite(ib._min.ptr(), 3) && finite(ib._max.ptr(), 3)))
+            {
+                repaired(*d, "an initial bound that is not finite", "none");
+                d->setInitialBound(osg::BoundingBox());
+            }
             const osg::Geometry* g = d->asGeometry();
             const std::string why = g ? geometryProblem(*g) : std::string();
             if (why.empty()) continue;
@@ -285,6 +323,32 @@ public:
     }
 
 private:
+    template <typename T> static bool finite(const T* v, int n)
+    {
+        for (int i = 0; i < n; ++i)
+            if (!std::isfinite(v[i]) || std::fabs(v[i]) > ModelValidation::MAX_COORDINATE) return false;
+        return true;
+    }
+
+    void repaired(osg::Object& o, const char* what, const char* now)
+    {
+        const std::string text = nameOf(o, o.className()) + ": " + what;
+        OSG_WARN << _source << ": " << text << "; set to " << now << std::endl;
+        _result.repairedValues.push_back(text);
+    }
+
+    /** A node's stored initial bound (InitialBound in .osgt/.osgb) replaces the computed one:
+     *  a centre at infinity made the whole scene's bound infinite (ModelFuzzer). */
+    void checkBound(osg::Node& node)
+    {
+        const osg::BoundingSphere& ib = node.getInitialBound();
+        if (ib.valid() && !(finite(ib._center.ptr(), 3) && finite(&ib._radius, 1)))
+        {
+            repaired(node, "an initial bound that is not finite", "none");
+            node.setInitialBound(osg::BoundingSphere());
+        }
+    }
+
     void check(osg::StateSet* ss)
     {
         if (!ss || !_seen.insert(ss).second) return;
@@ -320,6 +384,21 @@ private:
 
 namespace
 {
+/** Every node's and drawable's bound recomputed on next use (dirtyBound() reaches parents only). */
+void dirtyBounds(osg::Node& scene)
+{
+    struct Dirty : osg::NodeVisitor
+    {
+        Dirty() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        void apply(osg::Node& n) override
+        {
+            n.dirtyBound();
+            traverse(n);
+        }
+    } dirty;
+    scene.accept(dirty);
+}
+
 std::string nodeLabel(const osg::Node& n)
 {
     return std::string(n.libraryName()) + "::" + n.className() +
@@ -384,7 +463,13 @@ ModelValidation ModelValidation::validate(osg::Node& scene, const std::string& s
     ModelValidation result;
     Validator v(result, source);
     scene.accept(v);
-    if (!result.removedDrawables.empty()) scene.dirtyBound();
+    if (!result.removedDrawables.empty() || !result.repairedValues.empty()) dirtyBounds(scene);
+    // What no repair above reaches (a node kind with numbers of its own) is refused: nothing
+    // infinite goes on to the tools.
+    const osg::BoundingSphere bs = scene.getBound();
+    if (bs.valid() && !(std::isfinite(bs.radius()) && std::isfinite(bs.center().length())))
+        throw ModelStructureError(source + ": the scene's bounding sphere is not finite (" +
+                                  nodeLabel(scene) + " and below)");
     return result;
 }
 

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 namespace osmimport
@@ -231,6 +232,107 @@ private:
     std::uint64_t _vertices = 0;
 };
 
+/** libosmium 2.19 reads a coordinate's exponent into a 64-bit integer without an overflow check
+ *  (string_to_location_coordinate: lat="4.8e20" is signed overflow, undefined behaviour, and the
+ *  wrapped value can pass its range check: OsmFuzzer's 600 s campaign found it). OSM writes
+ *  coordinates as plain decimals, so a lat or lon attribute value with an exponent (or a
+ *  character reference, which expat would turn into one) is refused before libosmium parses it.
+ *  A scan of the XML bytes, fed in pieces: an attribute is " lat" or " lon" (after white space),
+ *  white space, '=', white space, and a quoted value. */
+class CoordinateScan
+{
+public:
+    explicit CoordinateScan(const std::string& name) : _name(name) {}
+
+    void feed(const char* p, std::size_t n)
+    {
+        for (std::size_t i = 0; i < n; ++i, ++_at)
+        {
+            const char c = p[i];
+            const bool space = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+            switch (_state)
+            {
+            case Outside:
+                if (_lastSpace && c == 'l') _state = L;
+                break;
+            case L:
+                _state = c == 'a' ? LA : c == 'o' ? LO : Outside;
+                break;
+            case LA:
+            case LO:
+                _state = (c == (_state == LA ? 't' : 'n')) ? Name : Outside;
+                _attribute = _state == Name ? (c == 't' ? "lat" : "lon") : "";
+                break;
+            case Name:
+                if (c == '=')
+                    _state = Equals;
+                else if (!space)
+                    _state = Outside;
+                break;
+            case Equals:
+                if (c == '"' || c == '\'')
+                    _quote = c, _state = Value, _value.clear(), _start = _at + 1, _bad = false;
+                else if (!space)
+                    _state = Outside;
+                break;
+            case Value:
+                if (c == _quote)
+                {
+                    if (_bad)
+                        throw std::runtime_error(
+                            "'" + _name + "' has the coordinate " + _attribute + "=\"" + _value +
+                            "\" (byte " + std::to_string(_start) +
+                            "), written with an exponent or a character reference: OSM coordinates are plain "
+                            "decimals (libosmium 2.19 overflows on large exponents)");
+                    _state = Outside;
+                }
+                else
+                {
+                    _bad = _bad || c == 'e' || c == 'E' || c == '&';
+                    if (_value.size() < 40) _value += c;
+                }
+                break;
+            }
+            _lastSpace = space;
+        }
+    }
+
+private:
+    enum State
+    {
+        Outside,
+        L,
+        LA,
+        LO,
+        Name,
+        Equals,
+        Value
+    } _state = Outside;
+    std::string _name, _value;
+    const char* _attribute = "";
+    char _quote = '"';
+    bool _lastSpace = false, _bad = false;
+    std::uint64_t _at = 0, _start = 0;
+};
+
+/** The coordinates of an XML source checked by CoordinateScan: the bytes in memory, or the file
+ *  read once in pieces (libosmium then streams it). PBF stores integers: nothing to check. */
+void checkCoordinates(const OsmSource& source)
+{
+    CoordinateScan scan(source.name);
+    if (source.data)
+    {
+        scan.feed(source.data->data(), source.data->size());
+        return;
+    }
+    const std::string lower = osgDB::convertToLowerCase(source.path);
+    if (lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".pbf") == 0) return;
+    std::ifstream in(source.path, std::ios::binary);
+    std::vector<char> chunk(1 << 16);
+    while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
+        scan.feed(chunk.data(), static_cast<std::size_t>(in.gcount()));
+}
+
 osmium::io::File fileOf(const OsmSource& source)
 {
     if (source.data) return osmium::io::File(source.data->data(), source.data->size(), "osm");
@@ -315,6 +417,7 @@ std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputL
                                    ReadReport& report)
 {
     std::vector<OsmObject> objects;
+    checkCoordinates(source);
     try
     {
         const osmium::io::File file = fileOf(source);
