@@ -342,6 +342,48 @@ TEST(ModelValidationTest, CyclesAndExcessiveDepthAreRefused)
         << out;
 }
 
+// How OSG steps through an image's data: rows of the row length, aligned to the packing, times
+// the depth. A 4x4x0 image with data and a packing of 4,521,985 stated 0 bytes and made
+// getColor read megabytes past its data (ModelFuzzer, SEGV in Appearance); such images are emptied.
+TEST(ModelValidationTest, ImagesWithImpossibleRowsAreEmptied)
+{
+    const auto imageWith = [](int r, unsigned packing, int rowLength)
+    {
+        osg::ref_ptr<osg::Image> image = new osg::Image;
+        image->setImage(4, 4, r, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, new unsigned char[64](),
+                        osg::Image::USE_NEW_DELETE, packing, rowLength);
+        return image;
+    };
+    struct Case
+    {
+        int r;
+        unsigned packing;
+        int rowLength;
+        const char* why; // "" when the image is fine
+    } cases[] = {{1, 4, 0, ""},
+                 {1, 1, 4, ""},
+                 {0, 4, 0, "states 4x4x0 with data"},
+                 {1, 4521985, 0, "a row alignment (packing) of 4521985, not 1, 2, 4 or 8"},
+                 {1, 3, 0, "a row alignment (packing) of 3"},
+                 {1, 1, 2, "a row length of 2 pixels, shorter than its width 4"}};
+    for (const Case& c : cases)
+    {
+        osg::ref_ptr<osg::Image> image = imageWith(c.r, c.packing, c.rowLength);
+        osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+        geode->addDrawable(loatest::triangle("tri").get());
+        geode->getOrCreateStateSet()->setTextureAttribute(0, new osg::Texture2D(image.get()));
+        const ModelValidation v = ModelValidation::validate(*geode, "rows.osgt");
+        if (!*c.why)
+        {
+            EXPECT_TRUE(v.emptiedImages.empty()) << c.packing;
+            continue;
+        }
+        ASSERT_EQ(v.emptiedImages.size(), 1u) << c.why;
+        EXPECT_NE(v.emptiedImages[0].find(c.why), std::string::npos) << v.emptiedImages[0];
+        EXPECT_EQ(image->data(), nullptr);
+    }
+}
+
 // Numbers that place a whole node: a stored initial bound at infinity (ModelFuzzer, 600 s
 // campaign), a transform's matrix or position that is not finite. Each is reset with a warning
 // naming the node, and the scene's bound is finite; a reproducer from the fuzzer reads likewise.

@@ -226,7 +226,14 @@ std::string hex(unsigned v)
 /** Why an image's data cannot hold its stated size, or "". */
 std::string imageProblem(const osg::Image& image)
 {
-    if (image.s() == 0 || image.t() == 0 || image.r() == 0) return std::string(); // already empty
+    if (image.s() == 0 || image.t() == 0 || image.r() == 0)
+    {
+        if (!image.data()) return std::string(); // already empty
+        // OSG's reads of such an image step by the stated row size: a 4x4x0 image with a packing
+        // of 4,521,985 stated 0 bytes and made getColor read megabytes past its data (ModelFuzzer).
+        return "states " + std::to_string(image.s()) + "x" + std::to_string(image.t()) + "x" +
+               std::to_string(image.r()) + " with data";
+    }
     if (!image.data())
         return "no data for a " + std::to_string(image.s()) + "x" + std::to_string(image.t()) + " image";
     // A pixel format and data type OSG gives no size: nothing can be read or hashed row by row
@@ -236,9 +243,18 @@ std::string imageProblem(const osg::Image& image)
     if (bits == 0 && !image.isCompressed())
         return "pixel format 0x" + hex(image.getPixelFormat()) + " with data type 0x" +
                hex(image.getDataType()) + " has no pixel size";
+    // Rows are aligned to the packing (GL_UNPACK_ALIGNMENT: 1, 2, 4 or 8) and may be longer than
+    // the width (the row length); OSG steps through the data by both.
+    const unsigned packing = image.getPacking();
+    if (packing != 1 && packing != 2 && packing != 4 && packing != 8)
+        return "a row alignment (packing) of " + std::to_string(packing) + ", not 1, 2, 4 or 8";
+    if (image.getRowLength() != 0 && image.getRowLength() < image.s())
+        return "a row length of " + std::to_string(image.getRowLength()) +
+               " pixels, shorter than its width " + std::to_string(image.s());
     // OSG's own size is an unsigned int, which 65536x65536x4 overflows: the base level in 64 bits.
-    const unsigned long long base =
-        static_cast<unsigned long long>(image.s()) * image.t() * image.r() * bits / 8;
+    const unsigned long long rowPixels = image.getRowLength() ? image.getRowLength() : image.s();
+    const unsigned long long rowBytes = ((rowPixels * bits + 7) / 8 + packing - 1) / packing * packing;
+    const unsigned long long base = rowBytes * image.t() * image.r();
     const unsigned long long stated = std::max<unsigned long long>(
         image.getTotalSizeInBytesIncludingMipmaps(), image.isCompressed() ? 0 : base);
     if (image.getAllocationMode() == osg::Image::USE_NEW_DELETE ||
