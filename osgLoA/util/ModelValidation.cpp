@@ -130,6 +130,12 @@ bool knownBinding(int b)
 }
 
 /** Why geometry cannot be drawn safely, or "". */
+/** Finite and within MAX_COORDINATE (NaN fails the comparison): a value that can place geometry. */
+bool plausibleCoordinate(double x)
+{
+    return std::abs(x) <= ModelValidation::MAX_COORDINATE;
+}
+
 std::string geometryProblem(const osg::Geometry& g)
 {
     const osg::Array* vertices = g.getVertexArray();
@@ -141,7 +147,7 @@ std::string geometryProblem(const osg::Geometry& g)
     if (vertices && vertices->getNumElements() > 0)
     {
         const std::size_t count = vertices->getTotalDataSize();
-        const auto bad = [](double x) { return !(std::abs(x) <= ModelValidation::MAX_COORDINATE); };
+        const auto bad = [](double x) { return !plausibleCoordinate(x); };
         if (vertices->getDataType() == GL_FLOAT)
         {
             const auto* f = static_cast<const float*>(vertices->getDataPointer());
@@ -342,7 +348,7 @@ private:
     template <typename T> static bool finite(const T* v, int n)
     {
         for (int i = 0; i < n; ++i)
-            if (!std::isfinite(v[i]) || std::fabs(v[i]) > ModelValidation::MAX_COORDINATE) return false;
+            if (!plausibleCoordinate(v[i])) return false;
         return true;
     }
 

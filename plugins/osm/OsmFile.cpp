@@ -232,6 +232,12 @@ private:
     std::uint64_t _vertices = 0;
 };
 
+/** The format by the osgDB extension (libosmium would look at the name's suffixes, case and all). */
+bool isPbf(const std::string& path)
+{
+    return osgDB::getLowerCaseFileExtension(path) == "pbf";
+}
+
 /** libosmium 2.19 reads a coordinate's exponent into a 64-bit integer without an overflow check
  *  (string_to_location_coordinate: lat="4.8e20" is signed overflow, undefined behaviour, and the
  *  wrapped value can pass its range check: OsmFuzzer's 600 s campaign found it). OSM writes
@@ -325,8 +331,7 @@ void checkCoordinates(const OsmSource& source)
         scan.feed(source.data->data(), source.data->size());
         return;
     }
-    const std::string lower = osgDB::convertToLowerCase(source.path);
-    if (lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".pbf") == 0) return;
+    if (isPbf(source.path)) return;
     std::ifstream in(source.path, std::ios::binary);
     std::vector<char> chunk(1 << 16);
     while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
@@ -336,10 +341,7 @@ void checkCoordinates(const OsmSource& source)
 osmium::io::File fileOf(const OsmSource& source)
 {
     if (source.data) return osmium::io::File(source.data->data(), source.data->size(), "osm");
-    // The format by the osgDB extension (osmium would look at the name's suffixes, case and all).
-    const std::string lower = osgDB::convertToLowerCase(source.path);
-    const bool pbf = lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".pbf") == 0;
-    return osmium::io::File(source.path, pbf ? "pbf" : "osm");
+    return osmium::io::File(source.path, isPbf(source.path) ? "pbf" : "osm");
 }
 } // namespace
 
