@@ -178,6 +178,17 @@ TEST(CityGeneratorTest, FacadeTexturesMixPowerOfTwoAndOtherSizesAndAreMipmapped)
     EXPECT_THROW(CityTextures::surface("marble"), std::invalid_argument);
 }
 
+TEST(CityGeneratorTest, GeneratedImagesAreSharedAndStatic)
+{
+    // One image per style and process, shared by every scene (no per-import copies).
+    const FacadeStyle& s = CityTextures::facadeStyles().front();
+    osg::ref_ptr<osg::Image> a = CityTextures::facade(s), b = CityTextures::facade(s);
+    EXPECT_EQ(a.get(), b.get());
+    EXPECT_EQ(a->getDataVariance(), osg::Object::STATIC);
+    EXPECT_EQ(CityTextures::surface("water").get(), CityTextures::surface("water").get());
+    EXPECT_NE(CityTextures::surface("water").get(), CityTextures::surface("terrain").get());
+}
+
 TEST(CityGeneratorTest, ImpossibleParametersAreRejectedByName)
 {
     CityParameters p;

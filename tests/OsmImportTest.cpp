@@ -315,6 +315,18 @@ double drawableArea(const osg::Node* node, const std::string& drawableName)
     return sum;
 }
 
+/** GDAL's transformation from a recorded local CRS (a PROJ string) to WGS84 lon/lat; null if
+ *  GDAL cannot make it. */
+std::unique_ptr<OGRCoordinateTransformation> toWgs84(const std::string& crs)
+{
+    OGRSpatialReference local, wgs84;
+    if (local.importFromProj4(crs.c_str()) != OGRERR_NONE) return nullptr;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&local, &wgs84));
+}
+
 // A tiny OSM document builder for fixtures.
 class OsmWriter
 {
@@ -780,13 +792,8 @@ TEST(OsmImportTest, ProjectionIsMetricAndRecordedOnTheRoot)
     EXPECT_NEAR(lonLat.y(), 48.0005, 1e-9);
 
     // Map a point back with the recorded CRS.
-    OGRSpatialReference local, wgs84;
-    ASSERT_EQ(local.importFromProj4(crs.c_str()), OGRERR_NONE);
-    wgs84.SetWellKnownGeogCS("WGS84");
-    local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&local, &wgs84));
-    ASSERT_TRUE(ct);
+    std::unique_ptr<OGRCoordinateTransformation> ct = toWgs84(crs);
+    ASSERT_TRUE(ct) << crs;
     double x = cb.x(), y = cb.y();
     ASSERT_TRUE(ct->Transform(1, &x, &y));
     EXPECT_NEAR(x, 11.0, 1e-8);
@@ -802,6 +809,69 @@ TEST(OsmImportTest, ProjectionIsMetricAndRecordedOnTheRoot)
     EXPECT_EQ(name, "Linde");
     EXPECT_TRUE(b->node->getUserValue("osm.description", description));
     EXPECT_EQ(description, "He said \"hi\", \\ok =>\"x\"");
+}
+
+TEST(OsmImportTest, FarPointsMapBackThroughTheRecordedCrs)
+{
+    // Trees up to ~100 km from the data's centre (60.0 N, 10.0 E): each lands where the recorded
+    // CRS, applied by GDAL/PROJ as a whole, maps it back (the importer projects through one
+    // pipeline centred on (0, 0) and shifts). Geometry is float: ~1 cm at 100 km, so 3e-7 deg.
+    OsmWriter w;
+    const double points[][2] = {{59.5, 8.5}, {60.5, 11.5}, {60.0, 10.0}, {59.9, 11.2}, {60.3, 8.9}};
+    std::vector<std::string> ids;
+    for (const auto& p : points)
+        ids.push_back(w.node(p[0], p[1], {{"natural", "tree"}}));
+    osg::ref_ptr<osg::Node> n = load(w.write("far-points"));
+    ASSERT_TRUE(n.valid());
+    std::string crs;
+    ASSERT_TRUE(n->getUserValue("loa.crs", crs));
+    std::unique_ptr<OGRCoordinateTransformation> ct = toWgs84(crs);
+    ASSERT_TRUE(ct) << crs;
+    const FeatureIndex index(*n);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+    {
+        const FeatureIndex::Entry* e = bySource(index, "node/" + ids[i]);
+        ASSERT_TRUE(e) << ids[i];
+        const osg::Vec3 c = e->feature->getBound().center();
+        double x = c.x(), y = c.y();
+        ASSERT_TRUE(ct->Transform(1, &x, &y));
+        EXPECT_NEAR(x, points[i][1], 3e-7) << "tree " << i;
+        EXPECT_NEAR(y, points[i][0], 3e-7) << "tree " << i;
+    }
+}
+
+TEST(OsmImportTest, FlatGroundIsOneQuadAndAGridWhenACellIsAsked)
+{
+    // Two trees 0.001 deg of latitude apart (111.2 m), margin 30 m: the ground spans 60 x 171.2 m.
+    OsmWriter w;
+    w.node(48.0, 11.0, {{"natural", "tree"}});
+    w.node(48.001, 11.0, {{"natural", "tree"}});
+    const std::string path = w.write("flat-ground");
+    const double width = 60.0, height = 0.001 * metresPerDegreeLat(48.0005) + 60.0;
+    struct Case
+    {
+        const char* options;
+        unsigned vertices, triangles;
+    };
+    // One quad by default; terrainCell=50: ceil(60/50) x ceil(171.2/50) = 2 x 4 cells.
+    for (const Case& c : {Case{"", 4, 2}, Case{"terrainCell=50", 3 * 5, 2 * 2 * 4}})
+    {
+        osg::ref_ptr<osg::Node> n = load(path, c.options);
+        ASSERT_TRUE(n.valid()) << c.options;
+        const FeatureIndex index(*n);
+        const FeatureIndex::Entry* terrain = nullptr;
+        for (const FeatureIndex::Entry& e : index.entries())
+            if (e.feature->getType() == FeatureType::Terrain) terrain = &e;
+        ASSERT_TRUE(terrain) << c.options;
+        const osg::Geode* g = terrain->node->asGeode();
+        ASSERT_TRUE(g && g->getNumDrawables() == 1) << c.options;
+        const osg::Geometry* geometry = g->getDrawable(0)->asGeometry();
+        ASSERT_TRUE(geometry && geometry->getName() == "TINRelief") << c.options;
+        EXPECT_EQ(geometry->getVertexArray()->getNumElements(), c.vertices) << c.options;
+        ASSERT_EQ(geometry->getNumPrimitiveSets(), 1u);
+        EXPECT_EQ(geometry->getPrimitiveSet(0)->getNumIndices(), 3 * c.triangles) << c.options;
+        EXPECT_NEAR(drawableArea(g, "TINRelief"), width * height, 1.0) << c.options;
+    }
 }
 
 TEST(OsmImportTest, WaterAndGreenSubTypes)

@@ -12,9 +12,11 @@
 #include <osmium/handler.hpp>
 #include <osmium/handler/node_locations_for_ways.hpp>
 #include <osmium/index/map/sparse_mem_array.hpp>
+#include <osmium/io/detail/queue_util.hpp>
 #include <osmium/io/pbf_input.hpp>
 #include <osmium/io/xml_input.hpp>
 #include <osmium/relations/relations_manager.hpp>
+#include <osmium/thread/pool.hpp>
 #include <osmium/visitor.hpp>
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
@@ -23,8 +25,10 @@
 #include <bzlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <stdexcept>
 
 namespace osmimport
@@ -338,11 +342,6 @@ void checkCoordinates(const OsmSource& source)
         scan.feed(chunk.data(), static_cast<std::size_t>(in.gcount()));
 }
 
-osmium::io::File fileOf(const OsmSource& source)
-{
-    if (source.data) return osmium::io::File(source.data->data(), source.data->size(), "osm");
-    return osmium::io::File(source.path, isPbf(source.path) ? "pbf" : "osm");
-}
 } // namespace
 
 std::vector<char> inflateBz2(const std::vector<char>& compressed, const std::string& name,
@@ -415,6 +414,58 @@ bool closedWayIsArea(const Tags& tags)
     return is("highway", "platform") || is("public_transport", "platform");
 }
 
+namespace
+{
+/** The file at source.path, read by libosmium's reader (a reading and a parsing thread). */
+std::vector<osmium::memory::Buffer> readFile(const OsmSource& source)
+{
+    std::vector<osmium::memory::Buffer> buffers;
+    osmium::io::Reader reader(osmium::io::File(source.path, isPbf(source.path) ? "pbf" : "osm"),
+                              osmium::io::read_meta::no);
+    while (osmium::memory::Buffer buffer = reader.read())
+        buffers.push_back(std::move(buffer));
+    reader.close();
+    return buffers;
+}
+
+/** XML in memory, parsed on this thread by the XML parser libosmium's reader runs (its
+ *  osmium::io::detail::XMLParser, fed and drained through the queues the reader would use). The
+ *  reader's two threads cost more than the parse of a small file: their start and exit were a
+ *  quarter of OsmFuzzer's time under ASan. Errors come out as the reader's do (osmium::xml_error
+ *  and the like, from the output queue). */
+std::vector<osmium::memory::Buffer> parseXml(const std::vector<char>& xml)
+{
+    namespace detail = osmium::io::detail;
+    detail::future_string_queue_type input(0, "raw_input"); // 0: unbounded, nothing waits
+    detail::future_buffer_queue_type output(0, "parser_results");
+    if (!xml.empty()) detail::add_to_queue(input, std::string(xml.data(), xml.size()));
+    detail::add_end_of_data_to_queue(input);
+    std::promise<osmium::io::Header> header;
+    std::atomic<std::size_t> offset{0};
+    detail::parser_arguments arguments{osmium::thread::Pool::default_instance(),
+                                       -1,
+                                       input,
+                                       output,
+                                       header,
+                                       &offset,
+                                       osmium::osm_entity_bits::all,
+                                       osmium::io::read_meta::no,
+                                       osmium::io::buffers_type::any,
+                                       false};
+    detail::XMLParser(arguments).parse(); // catches what it throws and queues it
+    std::vector<osmium::memory::Buffer> buffers;
+    for (;;)
+    {
+        std::future<osmium::memory::Buffer> next;
+        output.wait_and_pop(next);
+        osmium::memory::Buffer buffer = next.get(); // rethrows the parser's error
+        if (!buffer) break;                         // end of data
+        buffers.push_back(std::move(buffer));
+    }
+    return buffers;
+}
+} // namespace
+
 std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputLimits& limits,
                                    ReadReport& report)
 {
@@ -422,9 +473,16 @@ std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputL
     checkCoordinates(source);
     try
     {
-        const osmium::io::File file = fileOf(source);
-        MultipolygonRelations relations(report);
-        osmium::relations::read_relations(file, relations);
+        // The file is parsed once (libosmium's reader: a parsing thread, for a path a reading
+        // thread too) and its buffers kept, in memory about the size of the XML: the relations'
+        // first pass and the collection both run over them. Reading the file twice, once for
+        // the relations as osmium::relations::read_relations does, cost two more threads and a
+        // second parse. Without a relation the relation manager (its 1 MB buffers) is not made.
+        std::vector<osmium::memory::Buffer> buffers = source.data ? parseXml(*source.data) : readFile(source);
+        bool relationsPresent = false;
+        for (const osmium::memory::Buffer& buffer : buffers)
+            for (const osmium::OSMEntity& e : buffer.select<osmium::OSMEntity>())
+                relationsPresent = relationsPresent || e.type() == osmium::item_type::relation;
 
         using Index = osmium::index::map::SparseMemArray<osmium::unsigned_object_id_type, osmium::Location>;
         Index positive, negative; // JOSM's new objects have negative ids
@@ -432,11 +490,20 @@ std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputL
         locations.ignore_errors(); // a node missing from an extract: the way keeps the others
 
         ObjectCollector collector(objects, limits, source.name, report);
-        osmium::io::Reader reader(file, osmium::io::read_meta::no);
-        osmium::apply(reader, locations, collector,
-                      relations.handler([&collector](osmium::memory::Buffer&& areas)
-                                        { osmium::apply(areas, collector); }));
-        reader.close();
+        if (!relationsPresent)
+        {
+            for (osmium::memory::Buffer& buffer : buffers)
+                osmium::apply(buffer, locations, collector);
+            return objects;
+        }
+        MultipolygonRelations relations(report);
+        for (osmium::memory::Buffer& buffer : buffers)
+            osmium::apply(buffer, relations); // first pass: the relations and their member ways
+        relations.prepare_for_lookup();
+        auto& second = relations.handler([&collector](osmium::memory::Buffer&& areas)
+                                         { osmium::apply(areas, collector); });
+        for (osmium::memory::Buffer& buffer : buffers)
+            osmium::apply(buffer, locations, collector, second); // flushes the areas made
         relations.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&)
                                                { ++report.incompleteRelations; });
     }

@@ -8,4 +8,5 @@
 REGISTER_OBJECT_WRAPPER(osgLoA_ImageFilter, /* abstract */ 0, osgLoA::ImageFilter,
                         "osg::Object osgLoA::ImageFilter")
 {
+    (void)wrapper; // no serializers of its own (clang's -Wunused-parameter)
 }
