@@ -4,10 +4,12 @@
 #include <osg/ValueObject>
 #include <osgDB/FileNameUtils>
 
+#ifdef OSGLOA_WITH_GDAL
 #include <gdal_priv.h>
 #include <ogr_geometry.h>
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
+#endif
 
 #include <cmath>
 #include <memory>
@@ -16,6 +18,16 @@
 namespace osgLoA
 {
 
+#ifndef OSGLOA_WITH_GDAL
+// Built without GDAL (OSGLOA_WITH_GDAL=OFF, scripts/device-bench): no vector formats to read.
+std::vector<osg::ref_ptr<RegionOfInterest>> RegionFile::read(const std::string& path, const osg::Node*,
+                                                             double, Coordinates)
+{
+    throw std::runtime_error("regions '" + path +
+                             "': osgLoA was built without GDAL (OSGLOA_WITH_GDAL=OFF), "
+                             "so it reads no region files");
+}
+#else
 namespace
 {
 struct DatasetCloser
@@ -173,5 +185,6 @@ std::vector<osg::ref_ptr<RegionOfInterest>> RegionFile::read(const std::string& 
         throw std::runtime_error("regions '" + path + "': no point, line or polygon in it");
     return reader.regions;
 }
+#endif
 
 } // namespace osgLoA
