@@ -11,17 +11,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(rgba32f, binding = 0) uniform readonly image2D loa_gTexCoord; // u, v, lod, TID
 
-struct LoaPage
-{
-    ivec4 size;       // level-0 width, height, levels, texture unit
-    ivec4 addressing; // wrap s, wrap t (0 repeat, 1 clamp, 2 mirror), first region, -
-};
+#pragma include "loa_deferred_atlas.glsl"
 layout(std430, binding = 0) readonly buffer LoaDeferredPages { LoaPage loa_pages[]; };
-struct LoaAtlasRegion
-{
-    ivec4 rect;       // x, y, width, height in the atlas
-    ivec4 tiles;      // first tile, tiles x, tiles y, level
-};
 layout(std430, binding = 1) readonly buffer LoaDeferredRegions { LoaAtlasRegion loa_atlasRegions[]; };
 layout(std430, binding = 2) buffer LoaDeferredTileFlags { uint loa_tileFlags[]; };
 
@@ -29,19 +20,6 @@ uniform ivec2 loa_gbufferSize;
 uniform int loa_textureCount;
 uniform bool loa_markCoarser;
 
-// osgLoA::wrapIndex without branches or integer division (both are slow on SIMD CPU
-// rasterizers such as llvmpipe): repeat is i mod n, mirror folds i mod 2n, clamp clamps. The float
-// quotients are exact enough for |i| < 2^24 (the one-off correction covers rounding).
-int loa_deferredWrap(int i, int n, int mode)
-{
-    int rep = i - n * int(floor(float(i) / float(n)));
-    rep += rep < 0 ? n : (rep >= n ? -n : 0);
-    int period = 2 * n;
-    int m = i - period * int(floor(float(i) / float(period)));
-    m += m < 0 ? period : (m >= period ? -period : 0);
-    int mir = m < n ? m : period - 1 - m;
-    return mode == 0 ? rep : (mode == 2 ? mir : clamp(i, 0, n - 1));
-}
 
 void loa_markTexel(LoaAtlasRegion r, int x, int y)
 {

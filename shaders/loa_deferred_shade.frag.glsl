@@ -31,17 +31,8 @@ uniform sampler2D loa_gDepth;        // G-buffer depth
 uniform sampler2D loa_sourceAtlas;   // unfiltered mip levels
 uniform sampler2D loa_filteredAtlas; // filtered mip levels (same layout)
 
-struct LoaPage
-{
-    ivec4 size;       // level-0 width, height, levels, texture unit
-    ivec4 addressing; // wrap s, wrap t (0 repeat, 1 clamp, 2 mirror), first region, -
-};
+#pragma include "loa_deferred_atlas.glsl"
 layout(std430, binding = 4) readonly buffer LoaDeferredPages { LoaPage loa_pages[]; };
-struct LoaAtlasRegion
-{
-    ivec4 rect;       // x, y, width, height in the atlas
-    ivec4 tiles;      // first tile, tiles x, tiles y, level
-};
 layout(std430, binding = 5) readonly buffer LoaDeferredRegions { LoaAtlasRegion loa_atlasRegions[]; };
 layout(std430, binding = 6) readonly buffer LoaDeferredTileState { uint loa_tileFrame[]; };
 
@@ -55,19 +46,6 @@ uniform float loa_ambient = 0.35;
 
 layout(location = 0) out vec4 loa_fragColor;
 
-// osgLoA::wrapIndex without branches or integer division (both are slow on SIMD CPU
-// rasterizers such as llvmpipe): repeat is i mod n, mirror folds i mod 2n, clamp clamps. The float
-// quotients are exact enough for |i| < 2^24 (the one-off correction covers rounding).
-int loa_deferredWrap(int i, int n, int mode)
-{
-    int rep = i - n * int(floor(float(i) / float(n)));
-    rep += rep < 0 ? n : (rep >= n ? -n : 0);
-    int period = 2 * n;
-    int m = i - period * int(floor(float(i) / float(period)));
-    m += m < 0 ? period : (m >= period ? -period : 0);
-    int mir = m < n ? m : period - 1 - m;
-    return mode == 0 ? rep : (mode == 2 ? mir : clamp(i, 0, n - 1));
-}
 
 /** The bilinear footprint of uv in a region: wrapped texel indices (x0, x1, y0, y1) inside the
  *  region and the weights of x1 and y1. */

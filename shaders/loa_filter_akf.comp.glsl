@@ -85,20 +85,7 @@ vec4 loa_akfWrapped(ivec2 q) { return loa_fetch0(loa_akfWrap(q, loa_akfSize)); }
 vec4 loa_akfSample1(vec2 q, ivec2 size) { LOA_AKF_BILINEAR(loa_fetch1) }
 vec4 loa_akfSample2(vec2 q, ivec2 size) { LOA_AKF_BILINEAR(loa_fetch2) }
 
-// StructureTensor::flowOf: (t.x, t.y, A, phi) of a tensor (E, F, G).
-vec4 loa_akfFlow(vec3 efg)
-{
-    float E = efg.x, F = efg.y, G = efg.z;
-    float root = sqrt((E - G) * (E - G) + 4.0 * F * F);
-    float l1 = 0.5 * (E + G + root);
-    float l2 = 0.5 * (E + G - root);
-    if (!(root > 1e-9 * (l1 + l2)) || !(l1 + l2 > 0.0)) return vec4(0.0, 1.0, 0.0, 0.0);
-    vec2 g = E >= G ? vec2(l1 - G, F) : vec2(F, l1 - E);
-    g /= sqrt(dot(g, g));
-    vec2 t = vec2(-g.y, g.x);
-    if (t.y < 0.0 || (t.y == 0.0 && t.x < 0.0)) t = -t;
-    return vec4(t, root / (l1 + l2), 0.0);
-}
+#pragma include "loa_structure_tensor.glsl"
 
 #define LOA_AKF_ROWS(FETCH)                                                                                   \
     for (int j = 0; j <= LOA_AKF_RMAX; ++j)                                                                   \
@@ -150,7 +137,7 @@ vec4 loa_akfFlow(vec3 efg)
 // local deviation sbar.
 vec4 loa_akfFilter(ivec2 p, ivec2 size, vec3 tensor)
 {
-    vec4 fl = loa_akfFlow(tensor);
+    vec4 fl = loa_flowOfTensor(tensor);
     float c = fl.x, s = fl.y, A = fl.z;
     float a = LOA_AKF_RADIUS * clamp((LOA_AKF_ALPHA + A) / LOA_AKF_ALPHA, 0.1, 2.0);
     float b = LOA_AKF_RADIUS * clamp(LOA_AKF_ALPHA / (LOA_AKF_ALPHA + A), 0.1, 2.0);
@@ -205,7 +192,7 @@ vec4 loa_akfPropagate(ivec2 p, vec3 J)
     vec3 Jn = tr > 0.0 ? J / tr : vec3(0.5, 0.0, 0.5);
 #if LOA_AKF_COARSE
     vec3 C = loa_akfSample1((vec2(p) + 0.5) * 0.5, loa_akfLevelSize(loa_akfLevel + 1)).rgb;
-    float Al = loa_akfFlow(Jn).z, Ac = loa_akfFlow(C).z;
+    float Al = loa_flowOfTensor(Jn).z, Ac = loa_flowOfTensor(C).z;
     if (Al + Ac > 1e-6) Jn = (Jn * Al + C * Ac) / (Al + Ac);
 #endif
     return vec4(Jn, 0.0);

@@ -26,27 +26,13 @@ uniform float loa_phi;     // steepness
 // Twin of DoGFilter::threshold.
 float loa_threshold(float u) { return u >= loa_epsilon ? 1.0 : 1.0 + tanh(max(loa_phi * (u - loa_epsilon), -20.0)); }
 
-// Twin of StructureTensor::flowOf (and loa_tensorFlow in loa_filter_tensor.comp.glsl): the unit
-// edge tangent of a tensor (E, F, G), sign t.y > 0 (or t.y = 0, t.x > 0), (0, 1) where isotropic.
-vec2 loa_tangent(vec3 efg)
-{
-    float E = efg.x, F = efg.y, G = efg.z;
-    float root = sqrt((E - G) * (E - G) + 4.0 * F * F);
-    float l1 = 0.5 * (E + G + root);
-    float l2 = 0.5 * (E + G - root);
-    if (!(root > 1e-9 * (l1 + l2)) || !(l1 + l2 > 0.0)) return vec2(0.0, 1.0);
-    vec2 g = E >= G ? vec2(l1 - G, F) : vec2(F, l1 - E);
-    g /= sqrt(dot(g, g));
-    vec2 t = vec2(-g.y, g.x);
-    if (t.y < 0.0 || (t.y == 0.0 && t.x < 0.0)) t = -t;
-    return t;
-}
+#pragma include "loa_structure_tensor.glsl"
 
 vec4 loa_filterTexel(ivec2 p)
 {
     vec2 x0 = vec2(p) + 0.5;
     vec4 c = loa_fetch0(p);
-    vec2 t = loa_tangent(loa_fetch1(p).rgb);
+    vec2 t = loa_flowOfTensor(loa_fetch1(p).rgb).xy;
 #if LOA_FDOG_STAGE == 0
     vec2 g = vec2(t.y, -t.x);
     vec2 s = g / max(abs(g.x), abs(g.y));
@@ -77,7 +63,7 @@ vec4 loa_filterTexel(ivec2 p)
             float k = exp(-float(i * i) / (2.0 * loa_sigmaM * loa_sigmaM));
             sum += k * loa_sample0(x).r;
             wsum += k;
-            vec2 tn = loa_tangent(loa_sample1(x).rgb);
+            vec2 tn = loa_flowOfTensor(loa_sample1(x).rgb).xy;
             if (dot(tn, v) < 0.0) tn = -tn;
             v = tn;
         }

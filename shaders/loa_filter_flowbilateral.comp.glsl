@@ -12,25 +12,11 @@ vec4 loa_sample0(vec2 p);
 uniform float loa_sigmaD;
 uniform float loa_sigmaR;
 
-// Twin of StructureTensor::flowOf (and loa_tensorFlow in loa_filter_tensor.comp.glsl): the unit
-// edge tangent of a tensor (E, F, G), sign t.y > 0 (or t.y = 0, t.x > 0), (0, 1) where isotropic.
-vec2 loa_tangent(vec3 efg)
-{
-    float E = efg.x, F = efg.y, G = efg.z;
-    float root = sqrt((E - G) * (E - G) + 4.0 * F * F);
-    float l1 = 0.5 * (E + G + root);
-    float l2 = 0.5 * (E + G - root);
-    if (!(root > 1e-9 * (l1 + l2)) || !(l1 + l2 > 0.0)) return vec2(0.0, 1.0);
-    vec2 g = E >= G ? vec2(l1 - G, F) : vec2(F, l1 - E);
-    g /= sqrt(dot(g, g));
-    vec2 t = vec2(-g.y, g.x);
-    if (t.y < 0.0 || (t.y == 0.0 && t.x < 0.0)) t = -t;
-    return t;
-}
+#pragma include "loa_structure_tensor.glsl"
 
 vec4 loa_filterTexel(ivec2 p)
 {
-    vec2 t = loa_tangent(loa_fetch1(p).rgb);
+    vec2 t = loa_flowOfTensor(loa_fetch1(p).rgb).xy;
     vec2 d = LOA_AXIS == 0 ? vec2(t.y, -t.x) : t;
     vec2 s = d / max(abs(d.x), abs(d.y));
     float ds = length(s);

@@ -19,30 +19,17 @@ vec4 loa_sample0(vec2 p);
 vec4 loa_sample1(vec2 p);
 vec4 loa_sample2(vec2 p);
 
-// StructureTensor::flowOf: (t.x, t.y, A, phi) of a tensor (E, F, G) (phi not computed).
-vec4 loa_shockFlow(vec3 efg)
-{
-    float E = efg.x, F = efg.y, G = efg.z;
-    float root = sqrt((E - G) * (E - G) + 4.0 * F * F);
-    float l1 = 0.5 * (E + G + root);
-    float l2 = 0.5 * (E + G - root);
-    if (!(root > 1e-9 * (l1 + l2)) || !(l1 + l2 > 0.0)) return vec4(0.0, 1.0, 0.0, 0.0);
-    vec2 g = E >= G ? vec2(l1 - G, F) : vec2(F, l1 - E);
-    g /= sqrt(dot(g, g));
-    vec2 t = vec2(-g.y, g.x);
-    if (t.y < 0.0 || (t.y == 0.0 && t.x < 0.0)) t = -t;
-    return vec4(t, root / (l1 + l2), 0.0);
-}
+#pragma include "loa_structure_tensor.glsl"
 
 float loa_luma(vec3 c) { return 0.299 * c.r + 0.587 * c.g + 0.114 * c.b; }
 
 #if LOA_SHOCK_STAGE == 0
-vec2 loa_shockTangent(vec2 q) { return loa_shockFlow(loa_sample1(q).rgb).xy; }
+vec2 loa_shockTangent(vec2 q) { return loa_flowOfTensor(loa_sample1(q).rgb).xy; }
 
 vec4 loa_filterTexel(ivec2 p)
 {
     vec2 p0 = vec2(p) + 0.5;
-    vec4 f0 = loa_shockFlow(loa_fetch1(p).rgb);
+    vec4 f0 = loa_flowOfTensor(loa_fetch1(p).rgb);
 #if LOA_SHOCK_ADAPTIVE
     float s = LOA_SHOCK_SIGMA * 0.25 * (1.0 + f0.z) * (1.0 + f0.z);
 #else
@@ -80,7 +67,7 @@ vec4 loa_filterTexel(ivec2 p)
 vec4 loa_filterTexel(ivec2 p)
 {
     const float s2 = LOA_SHOCK_SIGMAG * LOA_SHOCK_SIGMAG, twoS2 = 2.0 * s2, halfWidth = 5.0 * LOA_SHOCK_SIGMAG;
-    vec4 f = loa_shockFlow(loa_fetch1(p).rgb);
+    vec4 f = loa_flowOfTensor(loa_fetch1(p).rgb);
     vec2 n = vec2(f.y, -f.x);
     float nx = abs(n.x), ny = abs(n.y);
     vec2 p0 = vec2(p) + 0.5;

@@ -8,19 +8,7 @@
 // StructureTensor::tensor and StructureTensor::flowOf.
 vec4 loa_fetch0(ivec2 p);
 
-vec4 loa_tensorFlow(vec3 efg)
-{
-    float E = efg.x, F = efg.y, G = efg.z;
-    float root = sqrt((E - G) * (E - G) + 4.0 * F * F);
-    float l1 = 0.5 * (E + G + root);
-    float l2 = 0.5 * (E + G - root);
-    if (!(root > 1e-9 * (l1 + l2)) || !(l1 + l2 > 0.0)) return vec4(0.0, 1.0, 0.0, 0.0);
-    vec2 g = E >= G ? vec2(l1 - G, F) : vec2(F, l1 - E);
-    g /= sqrt(dot(g, g));
-    vec2 t = vec2(-g.y, g.x);
-    if (t.y < 0.0 || (t.y == 0.0 && t.x < 0.0)) t = -t;
-    return vec4(t, root / (l1 + l2), atan(-t.x, t.y));
-}
+#pragma include "loa_structure_tensor.glsl"
 
 vec4 loa_filterTexel(ivec2 p)
 {
@@ -34,6 +22,6 @@ vec4 loa_filterTexel(ivec2 p)
     vec3 fy = ((n02 + n12 * 2.0 + n22) - (n00 + n10 * 2.0 + n20)) * 0.125;
     return vec4(dot(fx, fx), dot(fx, fy), dot(fy, fy), 0.0);
 #else
-    return loa_tensorFlow(loa_fetch0(p).rgb);
+    return loa_flowOfTensor(loa_fetch0(p).rgb);
 #endif
 }

@@ -20,12 +20,80 @@ TEST(ShaderLibraryTest, EverySourceOfShadersIsEmbeddedWithAVersionLine)
     EXPECT_NE(std::find(names.begin(), names.end(), "loa_plain.vert.glsl"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "loa_plain.frag.glsl"), names.end());
     loatest::setFilePath("");
+    int includes = 0;
     for (const auto& n : names)
     {
         const auto src = ShaderLibrary::getSource(n);
         EXPECT_EQ(src.origin, "embedded");
+        if (ShaderLibrary::isInclude(n))
+        {
+            ++includes; // included text: no #version of its own
+            EXPECT_EQ(src.text.find("#version"), std::string::npos) << n;
+            continue;
+        }
         EXPECT_EQ(src.text.rfind("#version ", 0), 0u) << n;
+        EXPECT_EQ(src.text.find("#pragma include"), std::string::npos) << n << ": an include left unresolved";
     }
+    EXPECT_GE(includes, 2);
+}
+
+TEST(ShaderLibraryTest, IncludesAreInsertedOnceWithLineDirectives)
+{
+    // The five flow-guided filters share the structure tensor's eigen-analysis by include.
+    loatest::setFilePath("");
+    for (const char* n :
+         {"loa_filter_akf.comp.glsl", "loa_filter_shock.comp.glsl", "loa_filter_tensor.comp.glsl",
+          "loa_filter_fdog.comp.glsl", "loa_filter_flowbilateral.comp.glsl"})
+    {
+        const auto src = ShaderLibrary::getSource(n);
+        ASSERT_EQ(src.includes, std::vector<std::string>{"loa_structure_tensor.glsl"}) << n;
+        const std::size_t definition = src.text.find("vec4 loa_flowOfTensor(vec3 efg)");
+        ASSERT_NE(definition, std::string::npos) << n;
+        EXPECT_EQ(src.text.find("vec4 loa_flowOfTensor(vec3 efg)", definition + 1), std::string::npos) << n;
+        EXPECT_NE(src.text.find("#line 1 1\n"), std::string::npos) << n;
+    }
+
+    // Nested, repeated and overridden includes; line numbers continue after each.
+    const std::string dir = loatest::freshDirectory("ShaderInclude");
+    auto write = [&](const std::string& name, const std::string& text)
+    { std::ofstream(dir + "/" + name) << text; };
+    write("top.frag.glsl",
+          "#version 450\n#pragma include \"a.glsl\"\nX\n  #pragma  include  \"b.glsl\"\nY\n");
+    write("a.glsl", "A1\n#pragma include \"b.glsl\"\nA3\n");
+    write("b.glsl", "B1\n");
+    loatest::setFilePath(dir);
+    const auto src = ShaderLibrary::getSource("top.frag.glsl");
+    EXPECT_EQ(src.includes, (std::vector<std::string>{"a.glsl", "b.glsl"}));
+    EXPECT_EQ(src.text, "#version 450\n#line 1 1\nA1\n#line 1 2\nB1\n#line 3 1\nA3\n#line 3 0\nX\n"
+                        "// (b.glsl is included above)\nY\n");
+    EXPECT_TRUE(ShaderLibrary::isInclude("a.glsl"));
+    EXPECT_FALSE(ShaderLibrary::isInclude("top.frag.glsl"));
+
+    // A cycle, a missing file and a malformed pragma are errors that name the files.
+    write("cycle.frag.glsl", "#version 450\n#pragma include \"c1.glsl\"\n");
+    write("c1.glsl", "#pragma include \"c2.glsl\"\n");
+    write("c2.glsl", "\n#pragma include \"c1.glsl\"\n");
+    write("missing.frag.glsl", "#version 450\n\n#pragma include \"nowhere.glsl\"\n");
+    write("bad.frag.glsl", "#version 450\n#pragma include nowhere.glsl\n");
+    auto error = [](const std::string& name)
+    {
+        try
+        {
+            ShaderLibrary::getSource(name);
+        }
+        catch (const std::invalid_argument& e)
+        {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    EXPECT_EQ(error("cycle.frag.glsl"),
+              "shader include cycle: cycle.frag.glsl -> c1.glsl -> c2.glsl -> c1.glsl (at 'c2.glsl' line 2)");
+    EXPECT_EQ(error("missing.frag.glsl"),
+              "shader include 'nowhere.glsl' (at 'missing.frag.glsl' line 3) is not "
+              "embedded and not on OSG_FILE_PATH");
+    EXPECT_NE(error("bad.frag.glsl").find("malformed include"), std::string::npos);
+    loatest::setFilePath("");
 }
 
 TEST(ShaderLibraryTest, AFileOnOsgFilePathOverridesTheEmbeddedSource)

@@ -48,7 +48,10 @@ std::vector<std::string> ShaderLibrary::embeddedNames()
     return names;
 }
 
-ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
+namespace
+{
+/** The text of one file: OSG_FILE_PATH first, else embedded; origin says which. */
+bool findText(const std::string& name, std::string& text, std::string& origin)
 {
     // Only the listed directories: a stray file in the working directory must not win.
     const std::string path = osgDB::findFileInPath(name, osgDB::getDataFilePathList(), osgDB::CASE_SENSITIVE);
@@ -56,13 +59,112 @@ ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
     {
         osgDB::ifstream in(path.c_str(), std::ios::in | std::ios::binary);
         if (!in) throw std::invalid_argument("shader override '" + path + "' exists but cannot be read");
-        std::ostringstream text;
-        text << in.rdbuf();
-        return {name, text.str(), path};
+        std::ostringstream all;
+        all << in.rdbuf();
+        text = all.str();
+        origin = path;
+        return true;
     }
     for (const detail::EmbeddedShader* e = detail::kEmbeddedShaders; e->name; ++e)
-        if (name == e->name) return {name, e->source, "embedded"};
-    throw std::invalid_argument("no shader named '" + name + "' is embedded or on OSG_FILE_PATH");
+        if (name == e->name)
+        {
+            text = e->source;
+            origin = "embedded";
+            return true;
+        }
+    return false;
+}
+
+/** The name in a line `#pragma include "NAME"` (spaces allowed around the words), or "". */
+std::string includedName(const std::string& line)
+{
+    std::istringstream words(line);
+    std::string hash, pragma, quoted;
+    if (!(words >> hash) || hash != "#pragma") return std::string();
+    if (!(words >> pragma) || pragma != "include") return std::string();
+    if (!(words >> quoted) || quoted.size() < 3 || quoted.front() != '"' || quoted.back() != '"')
+        throw std::invalid_argument("malformed include, expected #pragma include \"NAME\": " + line);
+    return quoted.substr(1, quoted.size() - 2);
+}
+
+constexpr int kMaxIncludeDepth = 16;
+
+/** Appends text to out with its includes replaced; chain: the files being expanded, outermost
+ *  first; number: this text's GLSL source string number. */
+void expand(const std::string& text, std::vector<std::string>& chain, int number, std::string& out,
+            std::vector<std::string>& includes)
+{
+    std::istringstream lines(text);
+    std::string line;
+    int lineNumber = 0;
+    while (std::getline(lines, line))
+    {
+        ++lineNumber;
+        const std::string name = includedName(line);
+        if (name.empty())
+        {
+            out += line + "\n";
+            continue;
+        }
+        const std::string where = "'" + chain.back() + "' line " + std::to_string(lineNumber);
+        if (std::find(chain.begin(), chain.end(), name) != chain.end())
+        {
+            std::string cycle;
+            for (const std::string& c : chain)
+                cycle += c + " -> ";
+            throw std::invalid_argument("shader include cycle: " + cycle + name + " (at " + where + ")");
+        }
+        if (int(chain.size()) > kMaxIncludeDepth)
+            throw std::invalid_argument("shader includes nest deeper than " +
+                                        std::to_string(kMaxIncludeDepth) + " at " + where);
+        if (std::find(includes.begin(), includes.end(), name) != includes.end())
+        {
+            out += "// (" + name + " is included above)\n";
+            continue;
+        }
+        std::string included, origin;
+        if (!findText(name, included, origin))
+            throw std::invalid_argument("shader include '" + name + "' (at " + where +
+                                        ") is not embedded and not on OSG_FILE_PATH");
+        includes.push_back(name);
+        const int k = int(includes.size());
+        out += "#line 1 " + std::to_string(k) + "\n";
+        chain.push_back(name);
+        expand(included, chain, k, out, includes);
+        chain.pop_back();
+        out += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(number) + "\n";
+    }
+}
+} // namespace
+
+bool ShaderLibrary::isInclude(const std::string& name)
+{
+    try
+    {
+        stageOf(name);
+        return false;
+    }
+    catch (const std::invalid_argument&)
+    {
+        return osgDB::getFileExtension(name) == "glsl";
+    }
+}
+
+ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
+{
+    Source src;
+    src.name = name;
+    std::string text;
+    if (!findText(name, text, src.origin))
+        throw std::invalid_argument("no shader named '" + name + "' is embedded or on OSG_FILE_PATH");
+    if (text.find("#pragma include") == std::string::npos)
+    {
+        src.text = std::move(text);
+        return src;
+    }
+    std::vector<std::string> chain{name};
+    expand(text, chain, 0, src.text, src.includes);
+    return src;
 }
 
 osg::Shader::Type ShaderLibrary::stageOf(const std::string& name)
