@@ -1,12 +1,18 @@
 # cmake -P script: writes OUTPUT, a C++ file holding each GLSL file of SOURCES as a raw string.
-# A source must start with an explicit #version line (checked here, at build time).
+# A shader (NAME.STAGE.glsl) must start with an explicit #version line; a file that exists only to
+# be included (NAME.glsl, no stage: ShaderLibrary's #pragma include) must have none (checked here,
+# at build time).
 set(_body "")
 set(_entries "")
 foreach(_src IN LISTS SOURCES)
     get_filename_component(_name "${_src}" NAME)
     file(READ "${_src}" _text)
-    if(NOT _text MATCHES "^(//[^\n]*\n|[ \t\r\n])*#version [0-9]+")
-        message(FATAL_ERROR "${_src}: a shader must begin with an explicit #version line")
+    if(_name MATCHES "\\.(vert|frag|geom|comp|tesc|tese)\\.glsl$")
+        if(NOT _text MATCHES "^(//[^\n]*\n|[ \t\r\n])*#version [0-9]+")
+            message(FATAL_ERROR "${_src}: a shader must begin with an explicit #version line")
+        endif()
+    elseif(_text MATCHES "#version")
+        message(FATAL_ERROR "${_src}: a file to be included (no stage in its name) must have no #version line")
     endif()
     if(_text MATCHES "\\)loa_glsl\"")
         message(FATAL_ERROR "${_src}: contains the raw-string delimiter )loa_glsl\"")
