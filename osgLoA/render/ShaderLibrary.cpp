@@ -87,6 +87,24 @@ std::string includedName(const std::string& line)
     return quoted.substr(1, quoted.size() - 2);
 }
 
+/** The stage NAME.STAGE.glsl denotes, or false when name has no such suffix. */
+bool stageFromName(const std::string& name, osg::Shader::Type& type)
+{
+    if (osgDB::getFileExtension(name) != "glsl") return false;
+    const std::string ext = osgDB::getFileExtension(osgDB::getNameLessExtension(name));
+    static const std::pair<const char*, osg::Shader::Type> stages[] = {
+        {"vert", osg::Shader::VERTEX},      {"frag", osg::Shader::FRAGMENT},
+        {"geom", osg::Shader::GEOMETRY},    {"comp", osg::Shader::COMPUTE},
+        {"tesc", osg::Shader::TESSCONTROL}, {"tese", osg::Shader::TESSEVALUATION}};
+    for (const auto& s : stages)
+        if (ext == s.first)
+        {
+            type = s.second;
+            return true;
+        }
+    return false;
+}
+
 constexpr int kMaxIncludeDepth = 16;
 
 /** Appends text to out with its includes replaced; chain: the files being expanded, outermost
@@ -139,15 +157,8 @@ void expand(const std::string& text, std::vector<std::string>& chain, int number
 
 bool ShaderLibrary::isInclude(const std::string& name)
 {
-    try
-    {
-        stageOf(name);
-        return false;
-    }
-    catch (const std::invalid_argument&)
-    {
-        return osgDB::getFileExtension(name) == "glsl";
-    }
+    osg::Shader::Type type;
+    return osgDB::getFileExtension(name) == "glsl" && !stageFromName(name, type);
 }
 
 ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
@@ -169,20 +180,11 @@ ShaderLibrary::Source ShaderLibrary::getSource(const std::string& name)
 
 osg::Shader::Type ShaderLibrary::stageOf(const std::string& name)
 {
-    // NAME.STAGE.glsl
-    const std::string withoutGlsl = osgDB::getNameLessExtension(name);
-    const std::string ext = osgDB::getFileExtension(withoutGlsl);
-    if (osgDB::getFileExtension(name) == "glsl")
-    {
-        if (ext == "vert") return osg::Shader::VERTEX;
-        if (ext == "frag") return osg::Shader::FRAGMENT;
-        if (ext == "geom") return osg::Shader::GEOMETRY;
-        if (ext == "comp") return osg::Shader::COMPUTE;
-        if (ext == "tesc") return osg::Shader::TESSCONTROL;
-        if (ext == "tese") return osg::Shader::TESSEVALUATION;
-    }
-    throw std::invalid_argument("shader name '" + name +
-                                "' does not end in .vert/.frag/.geom/.comp/.tesc/.tese.glsl");
+    osg::Shader::Type type;
+    if (!stageFromName(name, type))
+        throw std::invalid_argument("shader name '" + name +
+                                    "' does not end in .vert/.frag/.geom/.comp/.tesc/.tese.glsl");
+    return type;
 }
 
 std::string ShaderLibrary::stageName(osg::Shader::Type type)

@@ -473,9 +473,9 @@ std::vector<OsmObject> readOsmFile(const OsmSource& source, const osgLoA::InputL
     checkCoordinates(source);
     try
     {
-        // The file is parsed once (libosmium's reader: a parsing thread, for a path a reading
-        // thread too) and its buffers kept, in memory about the size of the XML: the relations'
-        // first pass and the collection both run over them. Reading the file twice, once for
+        // The file is parsed once (XML in memory on this thread, a path by libosmium's reader)
+        // and its buffers kept, in memory about the size of the XML: the relations' first pass
+        // and the collection both run over them. Reading the file twice, once for
         // the relations as osmium::relations::read_relations does, cost two more threads and a
         // second parse. Without a relation the relation manager (its 1 MB buffers) is not made.
         std::vector<osmium::memory::Buffer> buffers = source.data ? parseXml(*source.data) : readFile(source);
