@@ -5,6 +5,9 @@
 //   LOA_PASS_GBUFFER_DEPTH  front-surface G-buffer, depth/normal/id where the feature is opaque
 //   LOA_PASS_ABUFFER        one configuration's draw into the stencil-routed A-buffer
 //   LOA_PASS_PINGPONG       one configuration's opaque draw into a ping-pong target
+//   LOA_PASS_GBUFFER_FUSED  front-surface G-buffer, a feature in transition drawn once with the
+//                           blend of its configurations' styles (loa_fusedColor, generated per
+//                           combination of styles by TransitionRenderer)
 // and LOA_UNFEATURED with LOA_PASS_GBUFFER_COLOR for geometry outside every feature (weight 1),
 // LOA_COVERED with it for features whose configuration's weight is > 0 all over their box.
 in vec3 loa_scenePosition;
@@ -36,7 +39,14 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
 void loa_abufferWrite(vec4 straightAlphaColor);
 #endif
 
-#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH)
+#ifdef LOA_PASS_GBUFFER_FUSED
+// The weighted sum of the configurations' style colours (rgb), edges and unsharp strengths;
+// alpha: the sum of the weights.
+vec4 loa_fusedColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color,
+                    out vec4 edge, out float unsharp);
+#endif
+
+#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH) || defined(LOA_PASS_GBUFFER_FUSED)
 layout(location = 0) out vec4 loa_outColor;  // premultiplied colour of shared draws
 layout(location = 1) out vec4 loa_outNormal; // view normal * 0.5 + 0.5, unsharp strength
 layout(location = 2) out vec4 loa_outId;     // feature id (24 bits), drawn flag
@@ -83,7 +93,7 @@ void loa_discardBehindFront()
         discard;
 }
 
-#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH)
+#if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_GBUFFER_DEPTH) || defined(LOA_PASS_GBUFFER_FUSED)
 // The edge colour weighted by its strength, and the strength: sums of these over styles give the
 // strength-weighted mean colour (rgb / a) and the blended strength (a).
 vec4 loa_premultipliedEdge(int j)
@@ -114,6 +124,18 @@ void main()
     vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
     loa_outColor = vec4(c.rgb, 1.0);
     loa_writeGeometry(loa_premultipliedEdge(loa_configuration), loa_styleUnsharp[loa_configuration]);
+#elif defined(LOA_PASS_GBUFFER_FUSED)
+    // Only features whose contributing configurations are all visible and opaque come here, on
+    // opaque materials: their weights sum to 1 (normalized over the feature's matches), so the
+    // blend is the surface's colour, as the A-buffer's merged fragments of one surface give it.
+    vec4 edge;
+    float unsharp;
+    vec4 c = loa_fusedColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color, edge,
+                            unsharp);
+    if (c.a <= 0.0)
+        discard;
+    loa_outColor = vec4(c.rgb / c.a, 1.0);
+    loa_writeGeometry(edge / c.a, unsharp / c.a);
 #elif defined(LOA_PASS_GBUFFER_DEPTH)
     // Front surface only where the feature is opaque: its visible styles' weights sum to 1.
     float visible = 0.0, unsharp = 0.0;

@@ -151,12 +151,13 @@ float loa_rawWeight(int j, vec3 p)
     return loa_blendFunction(loa_fade[j], loa_interest(j, p));
 }
 
-// The blend weight of configuration j, normalized over the feature's matching configurations
-// (0 when none has weight here).
-#ifdef LOA_INTEREST_GROUPS
-// Specialized: each interest group's interest once, every raw weight once.
-float loa_blendWeight(int j, vec3 p)
+// The normalized blend weights of up to four configurations at once (js: their indices, -1 for
+// none; the fused pass of TransitionRenderer asks for several, docs/rendering.md): one loop over
+// the matches. Specialized (LOA_INTEREST_GROUPS): each interest group's interest once, every raw
+// weight once; generic: one interest evaluation per configuration.
+vec4 loa_blendWeights4(ivec4 js, vec3 p)
 {
+#ifdef LOA_INTEREST_GROUPS
     float g0 = 0.0, g1 = 0.0, g2 = 0.0, g3 = 0.0;
 #if LOA_INTEREST_GROUPS > 0
     g0 = loa_interest(loa_groupConfiguration[0], p);
@@ -170,24 +171,28 @@ float loa_blendWeight(int j, vec3 p)
 #if LOA_INTEREST_GROUPS > 3
     g3 = loa_interest(loa_groupConfiguration[3], p);
 #endif
-    float sum = 0.0, wj = 0.0;
+#endif
+    float sum = 0.0;
+    vec4 w = vec4(0.0);
     for (int k = 0; k < loa_numConfigurations; ++k)
     {
+#ifdef LOA_INTEREST_GROUPS
         int g = loa_interestGroup[k];
         float interest = g == 0 ? g0 : (g == 1 ? g1 : (g == 2 ? g2 : g3));
         float r = g < 0 ? loa_featureWeights[k] : loa_blendFunction(loa_fade[k], interest);
         r = (loa_featureMatches & (1 << k)) != 0 ? r : 0.0;
-        sum += r;
-        wj = k == j ? r : wj;
-    }
-    return sum > 0.0 ? wj / sum : 0.0;
-}
 #else
+        float r = loa_rawWeight(k, p);
+#endif
+        sum += r;
+        w = mix(w, vec4(r), equal(js, ivec4(k)));
+    }
+    return sum > 0.0 ? w / sum : vec4(0.0);
+}
+
+// The blend weight of configuration j, normalized over the feature's matching configurations
+// (0 when none has weight here).
 float loa_blendWeight(int j, vec3 p)
 {
-    float sum = 0.0;
-    for (int k = 0; k < loa_numConfigurations; ++k)
-        sum += loa_rawWeight(k, p);
-    return sum > 0.0 ? loa_rawWeight(j, p) / sum : 0.0;
+    return loa_blendWeights4(ivec4(j, -1, -1, -1), p).x;
 }
-#endif

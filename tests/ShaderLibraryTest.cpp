@@ -155,3 +155,50 @@ TEST(ShaderLibraryTest, DiagnosticsNameShaderStageAndProgram)
     ShaderDiagnostic l{"plain", "(link)", "link", ""};
     EXPECT_EQ(l.message(), "program 'plain' failed to link: (the driver gave no log)");
 }
+
+// Defines go right after the #version line, followed by a #line directive that gives the next
+// line the number it has in the file (the driver's messages keep the file's line numbers); the
+// shader's name lists them. One program can so link a function defined in two sources under
+// two names (TransitionRenderer's fused styles: `#define loa_styleColor loa_styleColor_k`).
+TEST(ShaderLibraryTest, DefinesGoAfterTheVersionLineAndKeepLineNumbers)
+{
+    loatest::setFilePath("");
+    const std::string name = "loa_style_cartographic.frag.glsl";
+    const std::string original = ShaderLibrary::getSource(name).text;
+    const std::size_t firstEol = original.find('\n');
+    ASSERT_EQ(original.substr(0, firstEol), "#version 450 compatibility");
+    osg::ref_ptr<osg::Shader> shader =
+        ShaderLibrary::createShader(name, {{"loa_styleColor", "loa_styleColor_3"}, {"LOA_TEST_FLAG", ""}});
+    const std::string expectedHead = "#version 450 compatibility\n#define loa_styleColor loa_styleColor_3\n"
+                                     "#define LOA_TEST_FLAG 1\n#line 2 0\n";
+    const std::string text = shader->getShaderSource();
+    ASSERT_EQ(text.substr(0, expectedHead.size()), expectedHead);
+    EXPECT_EQ(text.substr(expectedHead.size()), original.substr(firstEol + 1));
+    EXPECT_EQ(shader->getName(), name + "[loa_styleColor=loa_styleColor_3 LOA_TEST_FLAG]");
+    EXPECT_EQ(shader->getType(), osg::Shader::FRAGMENT);
+    // No defines: the plain shader.
+    EXPECT_EQ(ShaderLibrary::createShader(name, {})->getShaderSource(), original);
+    // A file whose #version is not its first line (a comment above it): the #line counts it.
+    const std::string dir = loatest::freshDirectory("ShaderDefinesVersionLater");
+    std::ofstream(dir + "/loa_test_defines.frag.glsl") << "// a comment\n#version 450 core\nvoid f() {}\n";
+    loatest::setFilePath(dir);
+    const std::string later =
+        ShaderLibrary::createShader("loa_test_defines.frag.glsl", {{"A", "2"}})->getShaderSource();
+    loatest::setFilePath("");
+    EXPECT_EQ(later, "// a comment\n#version 450 core\n#define A 2\n#line 3 0\nvoid f() {}\n");
+    // Names that are not identifiers and values that span lines are refused, with the name.
+    for (const ShaderLibrary::Defines& bad :
+         {ShaderLibrary::Defines{{"2x", ""}}, ShaderLibrary::Defines{{"A B", ""}},
+          ShaderLibrary::Defines{{"", "1"}}, ShaderLibrary::Defines{{"A", "1\n#define B 2"}}})
+    {
+        try
+        {
+            ShaderLibrary::createShader(name, bad);
+            ADD_FAILURE() << "accepted the define '" << bad[0].first << "'";
+        }
+        catch (const std::invalid_argument& e)
+        {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    }
+}

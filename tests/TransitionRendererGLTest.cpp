@@ -7,6 +7,8 @@
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/Feature>
+#include <osgLoA/styles/GraphicStyle>
+#include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageCompare>
@@ -99,7 +101,9 @@ unsigned count(const std::vector<TransitionRenderer::Draw>& draws, unsigned id,
 
 // Algorithm 1: three buildings at 50 m, 300 m and 550 m from the eye along the view; near
 // photorealistic (interest >= 0.6), far cartographic (interest <= 0.4), a smooth transition in
-// between; water matches no configuration; one building is outside the view frustum.
+// between; water matches no configuration; one building is outside the view frustum. The
+// building in transition is drawn fused (both styles opaque, an opaque material): one draw in
+// the G-buffer pass; with fusing off, through the A-buffer.
 TEST(TransitionRendererGLTest, Algorithm1DrawsMatchingFeaturesAndCullsZeroWeights)
 {
     osg::ref_ptr<UsageScenario> s = new UsageScenario;
@@ -122,6 +126,31 @@ TEST(TransitionRendererGLTest, Algorithm1DrawsMatchingFeaturesAndCullsZeroWeight
     r->renderImage();
     const auto& draws = loa->getRenderer()->getDraws();
     typedef TransitionRenderer::Draw D;
+    {
+        EXPECT_EQ(count(draws, 1, D::SHARED, 0), 1u);
+        EXPECT_EQ(count(draws, 3, D::SHARED, 1), 1u);
+        ASSERT_EQ(count(draws, 2, D::FUSED, -1), 1u);
+        for (const D& d : draws)
+        {
+            if (d.kind == D::FUSED)
+            {
+                EXPECT_EQ(d.configurations, 3u); // configurations 0 and 1
+            }
+        }
+        EXPECT_EQ(draws.size(), 3u);
+        const TransitionRenderer::Statistics& st = loa->getRenderer()->getStatistics();
+        EXPECT_EQ(st.drawnFeatures, 3u);
+        EXPECT_EQ(st.sharedDraws, 2u);
+        EXPECT_EQ(st.fusedDraws, 1u);
+        EXPECT_EQ(st.fusedPrograms, 1u);
+        EXPECT_EQ(st.depthOnlyDraws, 0u);
+        EXPECT_EQ(st.aBufferDraws, 0u);
+        EXPECT_FALSE(st.aBuffer);
+    }
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.fuseStyles = false;
+    loa->getRenderer()->setSettings(rs);
+    r->renderImage();
     // Near and far: one draw each, in the G-buffer pass, in their one style.
     EXPECT_EQ(count(draws, 1, D::SHARED, 0), 1u);
     EXPECT_EQ(count(draws, 3, D::SHARED, 1), 1u);
@@ -145,6 +174,172 @@ TEST(TransitionRendererGLTest, Algorithm1DrawsMatchingFeaturesAndCullsZeroWeight
     EXPECT_EQ(loa->getRenderer()->getStatistics().aBufferDraws, 0u);
 }
 
+// Fusing draws a feature in transition once only where one program can blend its styles; else
+// the A-buffer, as before (docs/rendering.md): a building at 300 m between two configurations
+// (weights 1 - smoothstep and smoothstep of the interest 0.5 around 0.4..0.6: 0.5 each).
+TEST(TransitionRendererGLTest, FusingFallsBackToTheABufferWhereOneProgramCannotBlend)
+{
+    GraphicStyleCatalog& catalog = GraphicStyleCatalog::instance();
+    osg::ref_ptr<GraphicStyle> dark = catalog.create("cartographic");
+    dark->setName("test-cartographic-dark");
+    dark->getParameters()->getUniform("loa_cartographic_ambient")->set(0.2f);
+    catalog.add(*dark);
+    osg::ref_ptr<GraphicStyle> same = catalog.create("cartographic");
+    same->setName("test-cartographic-same");
+    catalog.add(*same);
+    struct Case
+    {
+        std::vector<const char*> styles;
+        bool fused;
+    };
+    const Case cases[] = {
+        {{"photorealistic", "cartographic"}, true},
+        {{"cartographic", "test-cartographic-same"}, true},  // one shader, the same parameters
+        {{"cartographic", "test-cartographic-dark"}, false}, // one uniform, two values
+        {{"cartographic", "hidden"}, false},                 // fading to nothing: translucent
+        {{"blueprint", "cartographic", "photorealistic", "test-cartographic-same"}, true},
+        {{"blueprint", "cartographic", "photorealistic", "test-cartographic-same", "abstract"}, false}, // > 4
+    };
+    const TransitionConfiguration::FeatureTypes buildings = {FeatureType::Building};
+    for (const Case& c : cases)
+    {
+        std::string label;
+        for (const char* st : c.styles)
+            label += std::string(label.empty() ? "" : "+") + st;
+        osg::ref_ptr<UsageScenario> s = new UsageScenario;
+        s->setName("fusing");
+        // Every configuration fades in over 0.4..0.6 of interest and none fades out: all have
+        // the same weight at 0.5 (normalized: 1 / n each).
+        for (const char* st : c.styles)
+            s->addConfiguration(config(st, BlendFunction(0.4f, 0.6f, 1.0f, 1.0f), buildings,
+                                       new M(M::VIEW_DISTANCE, 0.0, 600.0)));
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(s.get());
+        loa->addChild(boxFeature(2, FeatureType::Building, osg::Vec3(0, 300, 0), 10));
+        auto r = renderer(64, 48, loa.get(), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
+        r->renderImage();
+        const TransitionRenderer::Statistics& st = loa->getRenderer()->getStatistics();
+        unsigned visible = 0;
+        for (const char* name : c.styles)
+            visible += std::string(name) == "hidden" ? 0u : 1u;
+        EXPECT_EQ(st.fusedDraws, c.fused ? 1u : 0u) << label;
+        EXPECT_EQ(st.aBufferDraws, c.fused ? 0u : visible) << label;
+        EXPECT_EQ(st.aBuffer, !c.fused) << label;
+    }
+}
+
+// The fused blend of two styles is their weighted sum: a box of feature interest 0.5 between
+// two configurations of weights smoothstep(0, 1, 0.5) = 0.5 and 1 - 0.5, against the mean of the
+// two frames that draw it in one style each (computed here; edges and unsharp masking off, since
+// the compositor's edge blend is not linear in the weights). Fused and single-style draws share
+// the G-buffer pass and its coverage, so the bar is 2/255 per channel on every pixel. Then the
+// same frame through the A-buffer (fusing off, one sample per pixel): 2/255 inside the faces, a
+// mean of 1/255 over the whole frame. At edges and silhouettes the two differ by design: the
+// A-buffer keeps fragments of faces just behind the front one (front-surface tolerance
+// 2 fwidth(z)) and merges them, and covers some silhouette pixels the G-buffer leaves empty
+// (its approximation there, docs/abuffer.md); the fused draw is the single-style draw's coverage.
+// Pairs: two different styles, and two configurations of one style (one evaluation of it: the
+// style's own image).
+TEST(TransitionRendererGLTest, FusedStylesEqualTheWeightedSumOfTheStyles)
+{
+    auto box = []()
+    {
+        osg::ref_ptr<osg::Node> node = boxFeature(2, FeatureType::Building, osg::Vec3(0, 60, 0), 20);
+        Feature::get(*node)->setInterest(0.5f);
+        return node;
+    };
+    auto frame = [&](const std::vector<std::pair<std::string, BlendFunction>>& configs, bool fuse,
+                     TransitionRenderer::Statistics* stats)
+    {
+        osg::ref_ptr<UsageScenario> s = new UsageScenario;
+        s->setName("fused");
+        const TransitionConfiguration::FeatureTypes buildings = {FeatureType::Building};
+        for (const auto& c : configs)
+            s->addConfiguration(config(c.first, c.second, buildings, new M(M::FEATURE_INTEREST, 0, 0)));
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(s.get());
+        loa->addChild(box().get());
+        TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+        rs.fuseStyles = fuse;
+        rs.edges = false;
+        rs.unsharpMasking = false;
+        // The A-buffer with one sample per pixel: coverage at the pixel centre, as the G-buffer's
+        // (4 samples on llvmpipe anti-alias the silhouettes against the background).
+        rs.samples = 1;
+        rs.maxPasses = 8;
+        loa->getRenderer()->setSettings(rs);
+        auto r = renderer(96, 64, loa.get(), osg::Vec3d(-20, 5, 25), osg::Vec3d(0, 60, 0));
+        osg::ref_ptr<osg::Image> img = r->renderImage();
+        if (stats) *stats = loa->getRenderer()->getStatistics();
+        return img;
+    };
+    const BlendFunction always(0.0f, 0.0f, 1.0f, 1.0f), rising(0.0f, 1.0f, 1.0f, 1.0f),
+        falling(0.0f, 0.0f, 0.0f, 1.0f);
+    for (const std::pair<std::string, std::string>& styles :
+         {std::make_pair(std::string("photorealistic"), std::string("cartographic")),
+          std::make_pair(std::string("cartographic"), std::string("cartographic"))})
+    {
+        const std::string label = styles.first + "+" + styles.second;
+        osg::ref_ptr<osg::Image> a = frame({{styles.first, always}}, true, nullptr);
+        osg::ref_ptr<osg::Image> b = frame({{styles.second, always}}, true, nullptr);
+        TransitionRenderer::Statistics fusedStats, aBufferStats;
+        osg::ref_ptr<osg::Image> fused =
+            frame({{styles.first, rising}, {styles.second, falling}}, true, &fusedStats);
+        osg::ref_ptr<osg::Image> blended =
+            frame({{styles.first, rising}, {styles.second, falling}}, false, &aBufferStats);
+        EXPECT_EQ(fusedStats.fusedDraws, 1u) << label;
+        EXPECT_EQ(fusedStats.aBufferDraws, 0u) << label;
+        EXPECT_EQ(aBufferStats.fusedDraws, 0u) << label;
+        EXPECT_EQ(aBufferStats.aBufferDraws, 2u) << label;
+        int worst = 0, covered = 0;
+        for (int y = 0; y < fused->t(); ++y)
+            for (int x = 0; x < fused->s(); ++x)
+            {
+                const unsigned char* pa = a->data(x, y);
+                covered += (pa[0] | pa[1] | pa[2]) != 0 ? 1 : 0;
+                for (int c = 0; c < 3; ++c)
+                {
+                    const int expected = (int(a->data(x, y)[c]) + int(b->data(x, y)[c]) + 1) / 2;
+                    worst = std::max(worst, std::abs(int(fused->data(x, y)[c]) - expected));
+                }
+            }
+        EXPECT_GT(covered, 400) << "the box covers too little of the frame to compare";
+        EXPECT_LE(worst, 2) << label;
+        if (styles.first != styles.second)
+        {
+            EXPECT_NE(a->data(48, 32)[0], b->data(48, 32)[0]); // the two styles differ there
+        }
+        // Against the A-buffer: inside faces (pixels whose 3x3 neighbourhood is flat, within
+        // 8/255, in both single-style frames) 2/255; over the whole frame a mean of 1/255.
+        int inside = 0, worstInside = 0;
+        for (int y = 1; y + 1 < fused->t(); ++y)
+            for (int x = 1; x + 1 < fused->s(); ++x)
+            {
+                bool flat = (a->data(x, y)[0] | a->data(x, y)[1] | a->data(x, y)[2]) != 0;
+                for (int j = -1; j <= 1 && flat; ++j)
+                    for (int i = -1; i <= 1 && flat; ++i)
+                        for (const osg::Image* img : {a.get(), b.get()})
+                            for (int c = 0; c < 3; ++c)
+                                flat = flat && std::abs(int(img->data(x + i, y + j)[c]) -
+                                                        int(img->data(x, y)[c])) <= 8;
+                if (!flat) continue;
+                ++inside;
+                for (int c = 0; c < 3; ++c)
+                    worstInside = std::max(worstInside,
+                                           std::abs(int(fused->data(x, y)[c]) - int(blended->data(x, y)[c])));
+            }
+        EXPECT_GT(inside, 300) << label;
+        EXPECT_LE(worstInside, 2) << label << " against the A-buffer inside faces";
+        const auto cmp = ImageComparison::compare(*fused, *blended, 16);
+        EXPECT_LE(cmp.meanDifference, 1.0) << label << " against the A-buffer: " << cmp.summary();
+        if (worst > 2 || worstInside > 2 || cmp.meanDifference > 1.0)
+        {
+            loatest::saveFailure("fused-" + label + "-fused", *fused, cmp.difference.get());
+            loatest::saveFailure("fused-" + label + "-abuffer", *blended, nullptr);
+        }
+    }
+}
+
 // Two styles of one surface with weights 0.5 and 0.5 compose to the mean of the two styles'
 // images (the A-buffer's same-surface merge), within 2/255; the paper's literal Algorithm 2
 // (no merge) lets the background through instead.
@@ -166,6 +361,7 @@ TEST(TransitionRendererGLTest, TwoHalfWeightsOfOneSurfaceGiveTheMeanOfTheStyles)
         TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
         rs.mergeSurfaces = merge;
         rs.unsharpMasking = false;
+        rs.fuseStyles = false; // the A-buffer's merge is what this test is about
         loa->getRenderer()->setSettings(rs);
         return loa;
     };
@@ -233,13 +429,15 @@ TEST(TransitionRendererGLTest, DistanceScenarioMatchesGolden)
 }
 
 // From the street, the view distance runs through all three levels: features in transition
-// take the A-buffer path (from the oblique camera everything is far: cartographic).
+// are drawn fused (their styles are opaque; from the oblique camera everything is far:
+// cartographic). The golden was made on the A-buffer path.
 TEST(TransitionRendererGLTest, DistanceScenarioFromTheStreetMatchesGolden)
 {
     TransitionRenderer::Statistics st;
     compareScenarioGolden("distance", "street", &st);
-    EXPECT_GT(st.depthOnlyDraws, 0u);
-    EXPECT_GT(st.aBufferDraws, st.depthOnlyDraws); // two or three styles per transitioning feature
+    EXPECT_GT(st.fusedDraws, 10u);
+    EXPECT_GE(st.fusedPrograms, 2u); // near/middle and middle/far transitions
+    EXPECT_EQ(st.aBufferDraws, 0u);
     EXPECT_GT(st.sharedDraws, 0u);
 }
 

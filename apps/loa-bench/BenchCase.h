@@ -68,7 +68,8 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer);
 /** Case "transitions" (BenchTransitions.cpp): paper 004's Table 1 on the demo city at 800x600,
  *  1280x720 and 1920x1080: plain rendering, homogeneous styles through the LoA pipeline and
  *  every library scenario from the oblique camera; plain, homogeneous and view distance from
- *  the street camera. */
+ *  the street camera; the real test scenes at 1280x720 and 1920x1080 from the street, oblique
+ *  and top cameras. Scenarios with fused styles and without (A-buffer only). */
 std::vector<Row> transitions(unsigned frames, std::string& renderer);
 
 /** Case "filters" (BenchFilters.cpp): each image filter on a 512x512 texture: our GPU passes, our

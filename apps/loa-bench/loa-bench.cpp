@@ -83,8 +83,13 @@ cases:
                  from the oblique camera plain rendering (loa_plain), one homogeneous style
                  (photorealistic, cartographic) through the LoA pipeline and each library
                  scenario; from the street camera plain, both homogeneous styles and the
-                 view-distance scenario (whose three levels all show there); error = fraction
-                 of pixels whose fragments did not all fit the A-buffer
+                 view-distance scenario (whose three levels all show there); on the real test
+                 scenes (data/test-scenes) at 1280x720 and 1920x1080 from the street, oblique
+                 and top cameras: plain, both homogeneous styles, the distance, view-angle and
+                 route scenarios. Each scenario twice: fuse=off (features in transition through
+                 the A-buffer; lost = fraction of pixels whose fragments did not all fit it)
+                 and fuse=on (fused styles); error of the fused row = its difference from the
+                 fuse=off frame (mean, 0..255; fraction of pixels over 16/255)
   filters        each image filter of paper 000 on a 512x512 texture: our GPU passes, our
                  CPU reference, OpenCV's implementation where it has one; error = ours
                  against OpenCV (8-bit units)

@@ -51,6 +51,7 @@ struct Options
     std::string focus, focusObject, focusWorld, focusRadii, readerOptions;
     bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
+    bool fuseStyles = true;
     loa::CameraChoice camera;
     loa::RulesChoice rules;
     int width = loa::kDefaultWidth, height = loa::kDefaultHeight, samples = 0;
@@ -120,6 +121,17 @@ Options parse(int argc, char** argv)
                   "A-buffer samples per pixel (default 4; at most GL_MAX_SAMPLES)");
     loa::addCount(app, "--abuffer-passes", o.passesABuffer, 1, 63,
                   "A-buffer routing passes at most (default 4)");
+    app.add_option_function<std::string>(
+           "--fuse-styles",
+           [&o](const std::string& v)
+           {
+               if (v != "on" && v != "off")
+                   throw loa::UsageError("--fuse-styles takes on or off, not '" + v + "'");
+               o.fuseStyles = v == "on";
+           },
+           "on (default): a feature in transition whose styles are all opaque is drawn once, its styles "
+           "blended per fragment; off: every feature in transition goes through the A-buffer")
+        ->type_name("on|off");
     app.add_option_function<std::string>(
            "--program",
            [&o](const std::string& p)
@@ -340,6 +352,7 @@ int run(const Options& o)
         osgLoA::TransitionRenderer::Settings rs = loaNode->getRenderer()->getSettings();
         rs.samples = o.samplesABuffer;
         rs.maxPasses = o.passesABuffer;
+        rs.fuseStyles = o.fuseStyles;
         loaNode->getRenderer()->setSettings(rs);
         osgLoA::StylePreparation::Options prep;
         prep.progress = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -412,9 +425,10 @@ int run(const Options& o)
     {
         const osgLoA::TransitionRenderer::Statistics& st = loaNode->getRenderer()->getStatistics();
         std::cout << "LoA: " << st.drawnFeatures << " features drawn: " << st.sharedDraws
-                  << " in one style (shared pass), " << st.depthOnlyDraws << " in transition; "
-                  << st.aBufferDraws << " A-buffer draws, " << st.pingPongDraws
-                  << " ping-pong draws; A-buffer " << (st.aBuffer ? "used" : "not needed")
+                  << " in one style (shared pass), " << st.fusedDraws
+                  << " fused (their styles blended in one draw, " << st.fusedPrograms << " combinations), "
+                  << st.depthOnlyDraws << " in transition; " << st.aBufferDraws << " A-buffer draws, "
+                  << st.pingPongDraws << " ping-pong draws; A-buffer " << (st.aBuffer ? "used" : "not needed")
                   << ", unsharp masking " << (st.unsharp ? "on" : "off") << "\n";
         if (st.drawnFeatures == 0)
             std::cerr << "loa-render: warning: no feature of the scenario is in view ("

@@ -7,6 +7,7 @@
 #include <osgDB/fstream>
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace osgLoA
@@ -215,6 +216,44 @@ osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name)
     osg::ref_ptr<osg::Shader> shader = new osg::Shader(type, src.text);
     shader->setName(name);
     shader->setFileName(src.origin == "embedded" ? name : src.origin);
+    return shader;
+}
+
+osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name, const Defines& defines)
+{
+    osg::ref_ptr<osg::Shader> shader = createShader(name);
+    if (defines.empty()) return shader;
+    std::string lines, label;
+    for (const auto& d : defines)
+    {
+        const bool identifier =
+            !d.first.empty() && !std::isdigit(static_cast<unsigned char>(d.first[0])) &&
+            std::all_of(d.first.begin(), d.first.end(),
+                        [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+        if (!identifier)
+            throw std::invalid_argument("ShaderLibrary: '" + d.first + "' is not a preprocessor name (" +
+                                        name + ")");
+        if (d.second.find_first_of("\r\n") != std::string::npos)
+            throw std::invalid_argument("ShaderLibrary: the value of " + d.first + " spans lines (" + name +
+                                        ")");
+        const std::string value = d.second.empty() ? std::string("1") : d.second;
+        lines += "#define " + d.first + " " + value + "\n";
+        label += (label.empty() ? "" : " ") + d.first + (d.second.empty() ? std::string() : "=" + d.second);
+    }
+    // After the #version line (which must come first in GLSL), then back to the file's line 2.
+    std::string text = shader->getShaderSource();
+    std::size_t at = 0;
+    const std::size_t version = text.find("#version");
+    if (version != std::string::npos)
+    {
+        if (text.find('\n', version) == std::string::npos) text += "\n";
+        at = text.find('\n', version) + 1;
+        const int line = 1 + int(std::count(text.begin(), text.begin() + static_cast<long>(version), '\n'));
+        lines += "#line " + std::to_string(line + 1) + " 0\n";
+    }
+    text.insert(at, lines);
+    shader->setShaderSource(text);
+    shader->setName(name + "[" + label + "]");
     return shader;
 }
 

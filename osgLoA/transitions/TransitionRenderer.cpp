@@ -16,8 +16,10 @@
 #include <osg/Transform>
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <stdexcept>
 
 namespace osgLoA
@@ -147,6 +149,63 @@ osg::Matrixd fitDepthRange(const osg::Matrixd& p, const osg::BoundingSphere& vie
     return osg::Matrixd::frustum(l * s, r * s, b * s, t * s, zNear, zFar);
 }
 
+/** The pass's main (loa_pass.frag.glsl) with the pass's defines ("A B": A and B defined as 1). */
+osg::ref_ptr<osg::Shader> passMain(const std::string& passDefines)
+{
+    ShaderLibrary::Defines defines;
+    std::istringstream words(passDefines);
+    for (std::string d; words >> d;)
+        defines.emplace_back(d, "");
+    return ShaderLibrary::createShader("loa_pass.frag.glsl", defines);
+}
+
+/** Whether two styles' parameter StateSets set something differently (a uniform of one name
+ *  with other values, a mode, an attribute or a texture of one unit, a define): such styles
+ *  cannot share one fused program, where each name has one value. */
+bool conflicting(const osg::StateSet& a, const osg::StateSet& b)
+{
+    for (const auto& u : a.getUniformList())
+    {
+        const osg::Uniform* other = b.getUniform(u.first);
+        if (other && u.second.first.valid() && other->compare(*u.second.first) != 0) return true;
+    }
+    for (const auto& m : a.getModeList())
+    {
+        auto it = b.getModeList().find(m.first);
+        if (it != b.getModeList().end() && it->second != m.second) return true;
+    }
+    auto attributesDiffer = [](const osg::StateSet::AttributeList& x, const osg::StateSet::AttributeList& y)
+    {
+        for (const auto& at : x)
+        {
+            auto it = y.find(at.first);
+            if (it != y.end() &&
+                (it->second.first->compare(*at.second.first) != 0 || it->second.second != at.second.second))
+                return true;
+        }
+        return false;
+    };
+    if (attributesDiffer(a.getAttributeList(), b.getAttributeList())) return true;
+    const auto& ta = a.getTextureAttributeList();
+    const auto& tb = b.getTextureAttributeList();
+    for (std::size_t unit = 0; unit < std::min(ta.size(), tb.size()); ++unit)
+        if (attributesDiffer(ta[unit], tb[unit])) return true;
+    const auto& ma = a.getTextureModeList();
+    const auto& mb = b.getTextureModeList();
+    for (std::size_t unit = 0; unit < std::min(ma.size(), mb.size()); ++unit)
+        for (const auto& m : ma[unit])
+        {
+            auto it = mb[unit].find(m.first);
+            if (it != mb[unit].end() && it->second != m.second) return true;
+        }
+    for (const auto& d : a.getDefineList())
+    {
+        auto it = b.getDefineList().find(d.first);
+        if (it != b.getDefineList().end() && it->second != d.second) return true;
+    }
+    return false;
+}
+
 } // namespace
 
 TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
@@ -171,6 +230,8 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
                 if (_sharedAny[j])
                     traversePass(cv, Pass::SHARED, int(j), _styles[j].parameters.get(),
                                  _styles[j].shared.get());
+            for (unsigned mask : _fusedMasks)
+                traversePass(cv, Pass::FUSED, -1, nullptr, fusedState(mask), mask);
             if (_depthAny) traversePass(cv, Pass::DEPTH_ONLY, -1, nullptr, _depthOnly.get());
             if (_hasUnfeatured) traversePass(cv, Pass::UNFEATURED, -1, nullptr, _unfeatured.get());
         }
@@ -281,25 +342,102 @@ osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleS
     }
     if (std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos)
         p->addShader(ShaderLibrary::createShader("loa_abuffer_write.frag.glsl").get());
-    // The pass's main with its define after the #version line.
-    const ShaderLibrary::Source main = ShaderLibrary::getSource("loa_pass.frag.glsl");
-    std::string text = main.text;
-    const std::size_t eol = text.find('\n');
-    std::string defines;
-    std::string d = passDefine;
-    for (std::size_t start = 0; start < d.size();)
-    {
-        std::size_t end = d.find(' ', start);
-        if (end == std::string::npos) end = d.size();
-        defines += "#define " + d.substr(start, end - start) + " 1\n";
-        start = end + 1;
-    }
-    text.insert(eol == std::string::npos ? text.size() : eol + 1, defines);
-    osg::ref_ptr<osg::Shader> pass = new osg::Shader(osg::Shader::FRAGMENT, text);
-    pass->setName("loa_pass.frag.glsl[" + d + "]");
-    p->addShader(pass.get());
+    p->addShader(passMain(passDefine).get());
     _programs[key] = p;
     return p;
+}
+
+osg::StateSet* TransitionRenderer::fusedState(unsigned mask)
+{
+    auto found = _fused.find(mask);
+    if (found != _fused.end()) return found->second.get();
+    // The configurations, and the distinct style shaders among them: configurations of one
+    // shader (compatible parameters, so the same values) share one evaluation of it.
+    std::vector<unsigned> configurations;
+    std::vector<std::string> shaders;
+    std::vector<std::vector<unsigned>> slotsOfShader; // shader -> slots (index into configurations)
+    for (unsigned j = 0; j < _styles.size(); ++j)
+    {
+        if (!(mask & (1u << j))) continue;
+        const std::string frag = _styles[j].style->getFragmentShader();
+        auto it = std::find(shaders.begin(), shaders.end(), frag);
+        if (it == shaders.end())
+        {
+            shaders.push_back(frag);
+            slotsOfShader.emplace_back();
+            it = shaders.end() - 1;
+        }
+        slotsOfShader[std::size_t(it - shaders.begin())].push_back(unsigned(configurations.size()));
+        configurations.push_back(j);
+    }
+    osg::ref_ptr<osg::Program> p = new osg::Program;
+    std::string label;
+    for (unsigned j : configurations)
+        label += (label.empty() ? "" : "+") + _styles[j].style->getName() + "#" + std::to_string(j);
+    p->setName("loa-fused-" + label);
+    for (const char* v : kVertexShaders)
+        p->addShader(ShaderLibrary::createShader(v).get());
+    for (const char* f :
+         {"loa_transition.frag.glsl", "loa_material_alpha.frag.glsl", "loa_fixed_function.frag.glsl"})
+        p->addShader(ShaderLibrary::createShader(f).get());
+    // Each style's loa_styleColor under its own name (ShaderLibrary::createShader with defines).
+    for (std::size_t s = 0; s < shaders.size(); ++s)
+        p->addShader(ShaderLibrary::createShader(shaders[s],
+                                                 {{"loa_styleColor", "loa_styleColor_" + std::to_string(s)}})
+                         .get());
+    // loa_fusedColor: the weights of the (at most four) configurations in one evaluation, every
+    // style evaluated (no branch: the styles take screen-space derivatives and implicit-LOD
+    // texture samples, undefined in non-uniform control flow), blended by weight.
+    const char* lanes = "xyzw";
+    std::string src = "#version 450 compatibility\n// Fused styles of configurations " + label +
+                      " (osgLoA::TransitionRenderer::fusedState)\n"
+                      "uniform vec4 loa_styleEdge[16];\nuniform float loa_styleUnsharp[16];\n"
+                      "vec4 loa_blendWeights4(ivec4 js, vec3 p);\n";
+    for (std::size_t s = 0; s < shaders.size(); ++s)
+        src += "vec4 loa_styleColor_" + std::to_string(s) +
+               "(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color);\n";
+    std::string js;
+    for (std::size_t k = 0; k < 4; ++k)
+        js += (k ? ", " : "") +
+              (k < configurations.size() ? std::to_string(configurations[k]) : std::string("-1"));
+    src += "vec4 loa_fusedColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 "
+           "color,\n"
+           "                    out vec4 edge, out float unsharp)\n{\n"
+           "    vec4 w = loa_blendWeights4(ivec4(" +
+           js +
+           "), scenePosition);\n"
+           "    edge = vec4(0.0);\n    unsharp = 0.0;\n    vec3 c = vec3(0.0);\n";
+    for (std::size_t k = 0; k < configurations.size(); ++k)
+    {
+        const std::string j = std::to_string(configurations[k]), wk = std::string("w.") + lanes[k];
+        src += "    edge += " + wk + " * vec4(loa_styleEdge[" + j + "].rgb * loa_styleEdge[" + j +
+               "].a, loa_styleEdge[" + j + "].a);\n    unsharp += " + wk + " * loa_styleUnsharp[" + j +
+               "];\n";
+    }
+    for (std::size_t s = 0; s < shaders.size(); ++s)
+    {
+        std::string ws;
+        for (unsigned slot : slotsOfShader[s])
+            ws += (ws.empty() ? "" : " + ") + std::string("w.") + lanes[slot];
+        src += "    c += (" + ws + ") * loa_styleColor_" + std::to_string(s) +
+               "(scenePosition, viewPosition, viewNormal, texCoord, color).rgb;\n";
+    }
+    src += "    return vec4(c, dot(w, vec4(1.0)));\n}\n";
+    osg::ref_ptr<osg::Shader> fused = new osg::Shader(osg::Shader::FRAGMENT, src);
+    fused->setName("loa_fused[" + label + "]");
+    p->addShader(fused.get());
+    p->addShader(passMain("LOA_PASS_GBUFFER_FUSED").get());
+    _programs["fused|" + std::to_string(mask)] = p;
+
+    osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
+    for (unsigned j : configurations)
+        if (_styles[j].parameters.valid()) ss->merge(*_styles[j].parameters);
+    ss->setAttributeAndModes(p.get());
+    osg::ref_ptr<osg::Node> holder = new osg::Node;
+    holder->setStateSet(ss.get());
+    _passStates->addChild(holder.get());
+    _fused[mask] = ss;
+    return ss.get();
 }
 
 void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureIndex& index)
@@ -339,6 +477,14 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         const float lambda = _settings.unsharpMasking ? style->getUnsharpMaskStrength() : 0.0f;
         unsharp->setElement(j, lambda);
         if (lambda > 0.0f) _maxUnsharpSigma = std::max(_maxUnsharpSigma, style->getUnsharpMaskRadius());
+        st.fusable = st.visible && st.opaque && !style->getFragmentShader().empty();
+        for (unsigned k = 0; k < j; ++k)
+            if (_styles[k].parameters.valid() && st.parameters.valid() &&
+                conflicting(*_styles[k].parameters, *st.parameters))
+            {
+                st.conflicts |= 1u << k;
+                _styles[k].conflicts |= 1u << j;
+            }
         if (!st.visible) continue;
         visibleMask |= 1 << j;
         const std::string frag = st.style->getFragmentShader();
@@ -511,6 +657,8 @@ void TransitionRenderer::unbind()
     _passStates->removeChildren(0, _passStates->getNumChildren());
     _bound = false;
     _styles.clear();
+    _fused.clear();
+    _fusedMasks.clear();
     _featureState.clear();
     _decisions.clear();
 }
@@ -520,6 +668,7 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
     std::fill(_sharedAny.begin(), _sharedAny.end(), 0);
     std::fill(_aAny.begin(), _aAny.end(), 0);
     std::fill(_pingAny.begin(), _pingAny.end(), 0);
+    _fusedMasks.clear();
     _depthAny = false;
     const auto& features = evaluator.features();
     const LandmarkDeformation* deformation = evaluator.getScenario()->getLandmarkDeformation();
@@ -532,13 +681,14 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
         const ScenarioEvaluator::FeatureState& fs = features[i];
         if (!fs.visible) continue;
         const ScenarioEvaluator::Match* m = evaluator.matchesOf(fs);
-        unsigned contributing = 0, visibleMask = 0;
+        unsigned contributing = 0, visibleMask = 0, contributingMask = 0;
         int last = -1;
         bool covers = false;
         for (unsigned k = 0; k < fs.numMatches; ++k)
         {
             if (!m[k].mayContribute || m[k].configuration >= _styles.size()) continue;
             ++contributing;
+            contributingMask |= 1u << m[k].configuration;
             last = int(m[k].configuration);
             covers = m[k].coversFeature;
             if (_styles[m[k].configuration].visible) visibleMask |= 1u << m[k].configuration;
@@ -551,6 +701,13 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
             d.covered = covers;
             _sharedAny[unsigned(last)] = 1;
             ++_stats.sharedDraws;
+        }
+        else if (fusable(contributingMask) && _opaqueMaterial[i])
+        {
+            d.fusedMask = contributingMask;
+            if (std::find(_fusedMasks.begin(), _fusedMasks.end(), contributingMask) == _fusedMasks.end())
+                _fusedMasks.push_back(contributingMask);
+            ++_stats.fusedDraws;
         }
         else
         {
@@ -583,14 +740,23 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
     }
 }
 
+bool TransitionRenderer::fusable(unsigned mask) const
+{
+    if (!_settings.fuseStyles || mask == 0 || std::bitset<32>(mask).count() > 4) return false;
+    for (unsigned j = 0; j < _styles.size(); ++j)
+        if ((mask & (1u << j)) && (!_styles[j].fusable || (_styles[j].conflicts & mask) != 0)) return false;
+    return true;
+}
+
 void TransitionRenderer::traversePass(osgUtil::CullVisitor& cv, Pass::Kind kind, int configuration,
-                                      osg::StateSet* style, osg::StateSet* pass)
+                                      osg::StateSet* style, osg::StateSet* pass, unsigned mask)
 {
     cv.pushStateSet(_common.get());
     if (style) cv.pushStateSet(style);
     cv.pushStateSet(pass);
     _pass.kind = kind;
     _pass.configuration = configuration;
+    _pass.mask = mask;
     ++_stats.configurationPasses;
     _node.traverseChildren(cv);
     _pass = Pass();
@@ -626,6 +792,10 @@ void TransitionRenderer::drawFeature(unsigned entry, osg::Node& node, osgUtil::C
         draw = (d.pingMask & bit) != 0;
         kind = Draw::PING_PONG;
         break;
+    case Pass::FUSED:
+        draw = d.fusedMask != 0 && d.fusedMask == _pass.mask;
+        kind = Draw::FUSED;
+        break;
     default:
         break;
     }
@@ -638,8 +808,9 @@ void TransitionRenderer::drawFeature(unsigned entry, osg::Node& node, osgUtil::C
     {
         Draw rec;
         rec.featureId = _node.getFeatureIndex().entries()[entry].feature->getId();
-        rec.configuration = kind == Draw::DEPTH_ONLY ? -1 : _pass.configuration;
+        rec.configuration = kind == Draw::DEPTH_ONLY || kind == Draw::FUSED ? -1 : _pass.configuration;
         rec.kind = kind;
+        rec.configurations = kind == Draw::FUSED ? d.fusedMask : 0u;
         _draws.push_back(rec);
     }
     cv.pushStateSet(_featureState[i].get());
@@ -700,6 +871,7 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     const osg::Matrixd mv = *cv.getModelViewMatrix();
     _viewToSceneMatrix = osg::Matrixd::inverse(mv);
     decide(evaluator);
+    _stats.fusedPrograms = unsigned(_fusedMasks.size());
 
     const osg::Viewport* vp = cv.getViewport();
     const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;

@@ -6,15 +6,18 @@
 #    over the target's seed corpus and its reproducers (tests/fuzz/crashes/<corpus>/), so every
 #    input that once crashed, hung or blew up stays a regression test, in CI as everywhere.
 #
-# osgloa_fuzz_target(NAME CORPUS SEEDS... SOURCES src... LIBS lib...): CORPUS names the folder
-# under tests/fuzz/crashes/ (and, unless SEEDS says otherwise, under tests/fuzz/corpus/).
+# osgloa_fuzz_target(NAME CORPUS SEEDS... SOURCES src... OBJECTS lib... LIBS lib...): CORPUS names
+# the folder under tests/fuzz/crashes/ (and, unless SEEDS says otherwise, under tests/fuzz/corpus/).
+# OBJECTS names the plugins' object libraries that hold SOURCES compiled: the replay build links
+# those objects when the plugin is built, rather than compiling the reader a second time; the
+# libFuzzer build always compiles SOURCES itself, instrumented.
 set(_fuzz_dir "${PROJECT_SOURCE_DIR}/tests/fuzz")
 find_package(nlohmann_json REQUIRED)
 find_package(GDAL REQUIRED)
 find_package(BZip2 REQUIRED)
 
 function(osgloa_fuzz_target name corpus)
-    cmake_parse_arguments(F "" "" "SEEDS;SOURCES;LIBS" ${ARGN})
+    cmake_parse_arguments(F "" "" "SEEDS;SOURCES;OBJECTS;LIBS" ${ARGN})
     if(NOT F_SEEDS)
         set(F_SEEDS "${_fuzz_dir}/corpus/${corpus}")
     endif()
@@ -26,7 +29,18 @@ function(osgloa_fuzz_target name corpus)
         set(_target ${name})
     else()
         set(_target Replay${name})
-        add_executable(${_target} ${_fuzz_dir}/${name}.cpp ${_fuzz_dir}/StandaloneFuzzMain.cpp ${F_SOURCES})
+        set(_compiled ${F_SOURCES})
+        if(F_OBJECTS)
+            set(_compiled)
+            foreach(_objects IN LISTS F_OBJECTS)
+                if(NOT TARGET ${_objects})
+                    set(_compiled ${F_SOURCES})
+                    break()
+                endif()
+                list(APPEND _compiled $<TARGET_OBJECTS:${_objects}>)
+            endforeach()
+        endif()
+        add_executable(${_target} ${_fuzz_dir}/${name}.cpp ${_fuzz_dir}/StandaloneFuzzMain.cpp ${_compiled})
         osgloa_set_warnings(${_target})
         set(_inputs ${F_SEEDS})
         if(EXISTS "${_fuzz_dir}/crashes/${corpus}")
@@ -51,13 +65,15 @@ set(_osm "${PROJECT_SOURCE_DIR}/plugins/osm")
 osgloa_fuzz_target(ScenarioFileFuzzer scenario
                    SEEDS "${PROJECT_SOURCE_DIR}/data/scenarios" "${_fuzz_dir}/corpus/scenario")
 osgloa_fuzz_target(CityJsonFuzzer cityjson
-                   SOURCES ${PROJECT_SOURCE_DIR}/plugins/cityjson/CityJsonReader.cpp
+                   SOURCES ${PROJECT_SOURCE_DIR}/plugins/cityjson/CityJsonReader.cpp OBJECTS osgloa_cityjson_reader
                    LIBS nlohmann_json::nlohmann_json)
 osgloa_fuzz_target(OsmFuzzer osm
                    SOURCES ${_osm}/OsmFile.cpp ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp
+                   OBJECTS osgloa_osm_file osgloa_osm_scene
                    LIBS GDAL::GDAL PROJ::proj BZip2::BZip2 osgLoA_osmium)
 osgloa_fuzz_target(OsmSceneFuzzer osmscene
-                   SOURCES ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp LIBS GDAL::GDAL PROJ::proj)
+                   SOURCES ${_osm}/OsmTags.cpp ${_osm}/OsmScene.cpp OBJECTS osgloa_osm_scene
+                   LIBS GDAL::GDAL PROJ::proj)
 osgloa_fuzz_target(ModelFuzzer model)
 osgloa_fuzz_target(RuleSetFuzzer rules)
 osgloa_fuzz_target(LoaFileFuzzer loa)
