@@ -33,35 +33,7 @@ uniform float loa_palette_far = 400.0;
 uniform int loa_palette_levelLow = 4;   // interest 0 / grazing view: colours
 uniform int loa_palette_levelHigh = 32; // interest 1 / frontal view: colours
 
-const vec3 loa_palette_white = vec3(0.95047, 1.0, 1.08883); // D65
-
-float loa_palette_toLinear(float c) { return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4); }
-float loa_palette_toSrgb(float l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055; }
-float loa_palette_f(float t) { return t > 0.008856452 ? pow(t, 1.0 / 3.0) : t * 7.787037 + 4.0 / 29.0; }
-float loa_palette_fInverse(float f) { return f > 6.0 / 29.0 ? f * f * f : (f - 4.0 / 29.0) / 7.787037; }
-
-vec3 loa_palette_rgbToLab(vec3 c)
-{
-    float r = loa_palette_toLinear(c.r), g = loa_palette_toLinear(c.g), b = loa_palette_toLinear(c.b);
-    float X = 0.4124564 * r + 0.3575761 * g + 0.1804375 * b;
-    float Y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
-    float Z = 0.0193339 * r + 0.1191920 * g + 0.9503041 * b;
-    float fx = loa_palette_f(X / loa_palette_white.x), fy = loa_palette_f(Y / loa_palette_white.y),
-          fz = loa_palette_f(Z / loa_palette_white.z);
-    return vec3(116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz));
-}
-
-vec3 loa_palette_labToRgb(vec3 lab)
-{
-    float fy = (lab.x + 16.0) / 116.0;
-    float fx = fy + lab.y / 500.0, fz = fy - lab.z / 200.0;
-    float X = loa_palette_white.x * loa_palette_fInverse(fx), Y = loa_palette_white.y * loa_palette_fInverse(fy),
-          Z = loa_palette_white.z * loa_palette_fInverse(fz);
-    vec3 l = vec3(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z, -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z,
-                  0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z);
-    l = clamp(l, 0.0, 1.0);
-    return vec3(loa_palette_toSrgb(l.r), loa_palette_toSrgb(l.g), loa_palette_toSrgb(l.b));
-}
+#pragma include "loa_cielab.glsl"
 
 // The number of colours for this fragment by loa_palette_strategy, clamped to [1, K].
 int loa_palette_levelOf(vec3 viewPosition, vec3 viewNormal, float interest)
@@ -82,7 +54,7 @@ int loa_palette_levelOf(vec3 viewPosition, vec3 viewNormal, float interest)
 // back in sRGB.
 vec3 loa_palette_map(vec3 srgb, int level)
 {
-    vec3 lab = loa_palette_rgbToLab(clamp(srgb, 0.0, 1.0));
+    vec3 lab = loa_cielab_fromSrgb(clamp(srgb, 0.0, 1.0));
     vec3 bestLab = texelFetch(loa_paletteLookup, ivec2(0, level - 1), 0).xyz;
     vec3 d = bestLab - lab;
     float best = dot(d, d);
@@ -97,7 +69,7 @@ vec3 loa_palette_map(vec3 srgb, int level)
             bestLab = c;
         }
     }
-    return loa_palette_labToRgb(bestLab);
+    return loa_cielab_toSrgbColor(bestLab);
 }
 // --- end of the palette lookup
 

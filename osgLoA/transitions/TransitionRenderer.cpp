@@ -19,6 +19,7 @@
 #include <bitset>
 #include <cmath>
 #include <functional>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -157,6 +158,24 @@ osg::ref_ptr<osg::Shader> passMain(const std::string& passDefines)
     for (std::string d; words >> d;)
         defines.emplace_back(d, "");
     return ShaderLibrary::createShader("loa_pass.frag.glsl", defines);
+}
+
+/** The functions a GLSL source defines (with a body; not those it only declares), main aside:
+ *  in a fused program each style's are renamed with the style's suffix, so that two styles
+ *  (or two copies of one included helper file) may define a function of one name. */
+std::vector<std::string> definedFunctions(const std::string& text)
+{
+    static const std::regex definition(
+        R"((?:^|[;}\s])(?:void|bool|int|uint|float|double|[biud]?vec[234]|mat[234](?:x[234])?)\s+([A-Za-z_]\w*)\s*\([^;{)]*\)\s*\{)");
+    std::vector<std::string> names;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), definition); it != std::sregex_iterator();
+         ++it)
+    {
+        const std::string name = (*it)[1].str();
+        if (name != "main" && std::find(names.begin(), names.end(), name) == names.end())
+            names.push_back(name);
+    }
+    return names;
 }
 
 /** Whether two styles' parameter StateSets set something differently (a uniform of one name
@@ -380,11 +399,15 @@ osg::StateSet* TransitionRenderer::fusedState(unsigned mask)
     for (const char* f :
          {"loa_transition.frag.glsl", "loa_material_alpha.frag.glsl", "loa_fixed_function.frag.glsl"})
         p->addShader(ShaderLibrary::createShader(f).get());
-    // Each style's loa_styleColor under its own name (ShaderLibrary::createShader with defines).
+    // Each style's functions (loa_styleColor and its helpers, included ones too) under names of
+    // its own: ShaderLibrary::createShader with `#define NAME NAME_s`.
     for (std::size_t s = 0; s < shaders.size(); ++s)
-        p->addShader(ShaderLibrary::createShader(shaders[s],
-                                                 {{"loa_styleColor", "loa_styleColor_" + std::to_string(s)}})
-                         .get());
+    {
+        ShaderLibrary::Defines renames;
+        for (const std::string& f : definedFunctions(ShaderLibrary::getSource(shaders[s]).text))
+            renames.emplace_back(f, f + "_" + std::to_string(s));
+        p->addShader(ShaderLibrary::createShader(shaders[s], renames).get());
+    }
     // loa_fusedColor: the weights of the (at most four) configurations in one evaluation, every
     // style evaluated (no branch: the styles take screen-space derivatives and implicit-LOD
     // texture samples, undefined in non-uniform control flow), blended by weight.
