@@ -24,6 +24,8 @@ uniform float loa_styleUnsharp[16];  // unsharp-masking strength of configuratio
 uniform uint loa_featureId;
 uniform sampler2D loa_baseTexture;
 uniform bool loa_hasTexture = false; // unit 0 has a texture (osgLoA::FixedFunctionUniforms)
+uniform int loa_texEnvMode = 0;      // unit 0's texture environment: 0 modulate, 1 replace, 2 decal, 3 add, 4 blend
+uniform bool loa_styleUsesTexture = true; // the configuration's style reads the model's texture
 uniform int loa_alphaFunc = 0x0207;  // the model's alpha test (GL comparison; GL_ALWAYS: none)
 uniform float loa_alphaRef = 0.0;
 uniform bool loa_blending = false;   // the model blends (GL_BLEND) where this is drawn
@@ -62,12 +64,17 @@ vec3 loa_facingNormal()
     return gl_FrontFacing ? n : -n;
 }
 
-// The opacity of the model's own material: texture alpha times vertex alpha.
+// The opacity of the model's own material: vertex alpha and the texture's alpha as unit 0's
+// texture environment combines them (the fixed function: decal keeps the fragment's alpha,
+// replace takes the texture's, the other modes multiply).
 float loa_materialOpacity()
 {
     float a = loa_color.a;
     if (loa_hasTexture)
-        a *= texture(loa_baseTexture, loa_texCoord).a;
+    {
+        float t = texture(loa_baseTexture, loa_texCoord).a;
+        a = loa_texEnvMode == 2 ? a : (loa_texEnvMode == 1 ? t : a * t);
+    }
     return a;
 }
 
@@ -163,11 +170,12 @@ void main()
     vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
     // Alpha makes a surface translucent only where the model blends (GL_BLEND), as in the fixed
     // function; elsewhere the style's colour is opaque and only the alpha test drops fragments.
-    // Where it blends, the material's opacity (texture alpha x vertex alpha) bounds the style's:
-    // a style that ignores the texture (cartographic, blueprint) keeps the shape of alpha-blended
-    // cut-outs (tree cards, a skyline backdrop) instead of drawing their whole quads (found by
-    // loa-bench's frame check on TORCS street-1: 2.6 % more of the frame covered than plain).
-    float a = loa_blending ? min(c.a, loa_materialOpacity()) : 1.0;
+    // Where it blends, a style that ignores the texture (cartographic, blueprint) takes its alpha
+    // bounded by the material's opacity, so that alpha-blended cut-outs (tree cards, a skyline
+    // backdrop) keep their shape instead of showing their whole quads (found by loa-bench's frame
+    // check on TORCS street-1: 2.6 % more of the frame covered than plain). Styles that read the
+    // texture have its alpha in theirs, through the model's texture environment.
+    float a = loa_blending ? (loa_styleUsesTexture ? c.a : min(c.a, loa_materialOpacity())) : 1.0;
 #ifdef LOA_PASS_ABUFFER
     loa_abufferWrite(vec4(c.rgb, a * w));
 #else

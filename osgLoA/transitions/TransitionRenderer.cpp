@@ -516,6 +516,7 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
             osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
             ss->setAttributeAndModes(program(frag, define).get());
             ss->addUniform(new osg::Uniform("loa_configuration", int(j)));
+            ss->addUniform(new osg::Uniform("loa_styleUsesTexture", style->getUsesTexture()));
             if (frontDepthNeeded)
             {
                 ss->setTextureAttribute(kFrontDepthUnit, frontDepth);
