@@ -22,6 +22,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 
 using namespace osgLoA;
 typedef SaliencyMetric M;
@@ -339,6 +341,65 @@ TEST(TransitionRendererGLTest, FusedStylesEqualTheWeightedSumOfTheStyles)
             loatest::saveFailure("fused-" + label + "-abuffer", *blended, nullptr);
         }
     }
+}
+
+// Two styles whose shaders define a helper of one name (with different bodies) are fused into one
+// program: each style's functions are renamed for it, so the program links and each style keeps
+// its own helper. Red and blue at weights 0.5 each blend to (0.5, 0, 0.5); edges and unsharp
+// masking off, unlit colours.
+TEST(TransitionRendererGLTest, FusedStylesMayDefineHelpersOfOneName)
+{
+    const std::string dir = loatest::freshDirectory("FusedHelpers");
+    const char* body =
+        "#version 450 compatibility\n"
+        "vec3 loa_test_colour() { return vec3(%s); }\n"
+        "vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord,\n"
+        "                    vec4 color)\n"
+        "{\n    return vec4(loa_test_colour(), 1.0);\n}\n";
+    for (const std::pair<const char*, const char*>& style :
+         {std::make_pair("testred", "1.0, 0.0, 0.0"), std::make_pair("testblue", "0.0, 0.0, 1.0")})
+    {
+        char text[512];
+        std::snprintf(text, sizeof(text), body, style.second);
+        std::ofstream(dir + "/loa_style_" + style.first + ".frag.glsl") << text;
+        osg::ref_ptr<GraphicStyle> g = new GraphicStyle;
+        g->setName(style.first);
+        g->setFragmentShader(std::string("loa_style_") + style.first + ".frag.glsl");
+        g->setOpaque(true);
+        g->setUsesTexture(false);
+        GraphicStyleCatalog::instance().add(*g);
+    }
+    loatest::setFilePath(dir);
+    osg::ref_ptr<UsageScenario> s = new UsageScenario;
+    s->setName("helpers");
+    const TransitionConfiguration::FeatureTypes types = {FeatureType::Green};
+    s->addConfiguration(
+        config("testred", BlendFunction(0.0f, 1.0f, 1.0f, 1.0f), types, new M(M::FEATURE_INTEREST, 0, 0)));
+    s->addConfiguration(
+        config("testblue", BlendFunction(0.0f, 0.0f, 0.0f, 1.0f), types, new M(M::FEATURE_INTEREST, 0, 0)));
+    osg::ref_ptr<LoANode> loa = new LoANode;
+    loa->setScenario(s.get());
+    loa->addChild(groundFeature(1, FeatureType::Green, 100.0f, 0.5f));
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.edges = false;
+    rs.unsharpMasking = false;
+    loa->getRenderer()->setSettings(rs);
+    osg::ref_ptr<osg::Image> img;
+    try
+    {
+        img = renderer(48, 32, loa.get(), osg::Vec3d(0, -30, 40), osg::Vec3d(0, 0, 0))->renderImage();
+    }
+    catch (const std::exception& e)
+    {
+        loatest::setFilePath("");
+        FAIL() << "the fused program did not link: " << e.what();
+    }
+    loatest::setFilePath("");
+    EXPECT_EQ(loa->getRenderer()->getStatistics().fusedDraws, 1u);
+    const unsigned char* p = img->data(24, 16);
+    EXPECT_NEAR(p[0], 128, 2);
+    EXPECT_NEAR(p[1], 0, 2);
+    EXPECT_NEAR(p[2], 128, 2);
 }
 
 // A style that ignores the texture keeps the shape of alpha-blended cut-outs: a ground quad whose
