@@ -22,15 +22,7 @@ uniform float loa_abstraction_pencilScale = 0.25;
 uniform float loa_abstraction_ambient = 0.35;
 uniform sampler2DArray loa_abstraction_pencil;
 
-in vec2 loa_texCoord;
-in vec4 loa_color;
-in float loa_gouraud;
-in vec3 loa_objectPosition;
-in vec3 loa_objectNormal;
-
-layout(location = 0) out vec4 loa_fragColor;
-
-bool loa_materialCovers(vec2 texCoord, vec4 color); // loa_material_alpha.frag.glsl
+#pragma include "loa_abstraction_pass.glsl"
 
 void main()
 {

@@ -4,15 +4,7 @@
 uniform sampler2D loa_baseTexture;
 uniform bool loa_hasTexture = false; // set true on the StateSets that have a texture on unit 0
 
-in vec2 loa_texCoord;
-in vec4 loa_color;
-in float loa_gouraud;
-in vec3 loa_objectPosition;
-in vec3 loa_objectNormal;
-
-layout(location = 0) out vec4 loa_fragColor;
-
-bool loa_materialCovers(vec2 texCoord, vec4 color); // loa_material_alpha.frag.glsl
+#pragma include "loa_abstraction_pass.glsl"
 
 void main()
 {
