@@ -100,18 +100,6 @@ private:
     GLint _texture = 0, _program = 0, _unpackRow = 0, _packRow = 0, _unpackAlign = 4, _packAlign = 4;
 };
 
-std::string withDefines(const std::string& source,
-                        const std::vector<std::pair<std::string, std::string>>& defines)
-{
-    const std::string::size_type eol = source.find('\n');
-    std::string head = eol == std::string::npos ? source : source.substr(0, eol + 1);
-    std::string rest = eol == std::string::npos ? std::string() : source.substr(eol + 1);
-    std::string d;
-    for (const auto& kv : defines)
-        d += "#define " + kv.first + " " + kv.second + "\n";
-    return head + d + "#line 2\n" + rest;
-}
-
 struct Atlas
 {
     GLuint texture = 0;
@@ -164,11 +152,12 @@ struct GpuFilterEngine::Impl
             defines.push_back({"LOA_LINES", pass.dispatch == GpuFilterPass::ROWS ? "1" : "2"});
         const std::string common = ShaderLibrary::getSource("loa_filter_common.comp.glsl").text;
         const std::string own = ShaderLibrary::getSource(pass.shader).text;
-        GLuint a = compile("loa_filter_common.comp.glsl", withDefines(common, defines));
+        GLuint a = compile("loa_filter_common.comp.glsl",
+                           ShaderLibrary::withDefines(common, defines, "loa_filter_common.comp.glsl"));
         GLuint b = 0;
         try
         {
-            b = compile(pass.shader, withDefines(own, defines));
+            b = compile(pass.shader, ShaderLibrary::withDefines(own, defines, pass.shader));
         }
         catch (...)
         {

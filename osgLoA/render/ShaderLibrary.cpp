@@ -219,11 +219,11 @@ osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name)
     return shader;
 }
 
-osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name, const Defines& defines)
+std::string ShaderLibrary::withDefines(const std::string& text, const Defines& defines,
+                                       const std::string& name)
 {
-    osg::ref_ptr<osg::Shader> shader = createShader(name);
-    if (defines.empty()) return shader;
-    std::string lines, label;
+    if (defines.empty()) return text;
+    std::string lines;
     for (const auto& d : defines)
     {
         const bool identifier =
@@ -236,23 +236,31 @@ osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name, c
         if (d.second.find_first_of("\r\n") != std::string::npos)
             throw std::invalid_argument("ShaderLibrary: the value of " + d.first + " spans lines (" + name +
                                         ")");
-        const std::string value = d.second.empty() ? std::string("1") : d.second;
-        lines += "#define " + d.first + " " + value + "\n";
-        label += (label.empty() ? "" : " ") + d.first + (d.second.empty() ? std::string() : "=" + d.second);
+        lines += "#define " + d.first + " " + (d.second.empty() ? std::string("1") : d.second) + "\n";
     }
-    // After the #version line (which must come first in GLSL), then back to the file's line 2.
-    std::string text = shader->getShaderSource();
+    // After the #version line (which must come first in GLSL), then back to the file's next line.
+    std::string out = text;
     std::size_t at = 0;
-    const std::size_t version = text.find("#version");
+    const std::size_t version = out.find("#version");
     if (version != std::string::npos)
     {
-        if (text.find('\n', version) == std::string::npos) text += "\n";
-        at = text.find('\n', version) + 1;
-        const int line = 1 + int(std::count(text.begin(), text.begin() + static_cast<long>(version), '\n'));
+        if (out.find('\n', version) == std::string::npos) out += "\n";
+        at = out.find('\n', version) + 1;
+        const int line = 1 + int(std::count(out.begin(), out.begin() + static_cast<long>(version), '\n'));
         lines += "#line " + std::to_string(line + 1) + " 0\n";
     }
-    text.insert(at, lines);
-    shader->setShaderSource(text);
+    out.insert(at, lines);
+    return out;
+}
+
+osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name, const Defines& defines)
+{
+    osg::ref_ptr<osg::Shader> shader = createShader(name);
+    if (defines.empty()) return shader;
+    shader->setShaderSource(withDefines(shader->getShaderSource(), defines, name));
+    std::string label;
+    for (const auto& d : defines)
+        label += (label.empty() ? "" : " ") + d.first + (d.second.empty() ? std::string() : "=" + d.second);
     shader->setName(name + "[" + label + "]");
     return shader;
 }

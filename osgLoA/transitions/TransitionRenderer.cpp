@@ -150,6 +150,17 @@ osg::Matrixd fitDepthRange(const osg::Matrixd& p, const osg::BoundingSphere& vie
     return osg::Matrixd::frustum(l * s, r * s, b * s, t * s, zNear, zFar);
 }
 
+/** The shaders every feature draw links: the vertex stage, the blend weights, the material's
+ *  alpha test, and (for passes that draw a style) the fixed-function equations styles call. */
+void addFeatureShaders(osg::Program& p, bool styled)
+{
+    for (const char* v : kVertexShaders)
+        p.addShader(ShaderLibrary::createShader(v).get());
+    p.addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
+    p.addShader(ShaderLibrary::createShader("loa_material_alpha.frag.glsl").get());
+    if (styled) p.addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
+}
+
 /** The pass's main (loa_pass.frag.glsl) with the pass's defines ("A B": A and B defined as 1). */
 osg::ref_ptr<osg::Shader> passMain(const std::string& passDefines)
 {
@@ -350,15 +361,8 @@ osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleS
     if (it != _programs.end()) return it->second;
     osg::ref_ptr<osg::Program> p = new osg::Program;
     p->setName("loa-" + (styleShader.empty() ? std::string("depth") : styleShader) + "-" + passDefine);
-    for (const char* v : kVertexShaders)
-        p->addShader(ShaderLibrary::createShader(v).get());
-    p->addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
-    p->addShader(ShaderLibrary::createShader("loa_material_alpha.frag.glsl").get());
-    if (!styleShader.empty())
-    {
-        p->addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
-        p->addShader(ShaderLibrary::createShader(styleShader).get());
-    }
+    addFeatureShaders(*p, !styleShader.empty());
+    if (!styleShader.empty()) p->addShader(ShaderLibrary::createShader(styleShader).get());
     if (std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos)
         p->addShader(ShaderLibrary::createShader("loa_abuffer_write.frag.glsl").get());
     p->addShader(passMain(passDefine).get());
@@ -394,11 +398,7 @@ osg::StateSet* TransitionRenderer::fusedState(unsigned mask)
     for (unsigned j : configurations)
         label += (label.empty() ? "" : "+") + _styles[j].style->getName() + "#" + std::to_string(j);
     p->setName("loa-fused-" + label);
-    for (const char* v : kVertexShaders)
-        p->addShader(ShaderLibrary::createShader(v).get());
-    for (const char* f :
-         {"loa_transition.frag.glsl", "loa_material_alpha.frag.glsl", "loa_fixed_function.frag.glsl"})
-        p->addShader(ShaderLibrary::createShader(f).get());
+    addFeatureShaders(*p, true);
     // Each style's functions (loa_styleColor and its helpers, included ones too) under names of
     // its own: ShaderLibrary::createShader with `#define NAME NAME_s`.
     for (std::size_t s = 0; s < shaders.size(); ++s)
