@@ -1,50 +1,35 @@
 #version 450 compatibility
 #pragma import_defines(LOA_MAX_FRAGMENTS)
-// Stencil-routed A-buffer resolve (paper 004 §3.2.4, Algorithm 2), as functions; the CPU
-// reference osgLoA::ReferenceCompositor does the very same operations (docs/abuffer.md).
+// A-buffer resolve (paper 004 §3.2.4, Algorithm 2), as functions, for every order-independent
+// transparency method (osgLoA::OrderIndependentTransparency): the method's fetch shader
+// (loa_abuffer_fetch_*.frag.glsl) defines loa_abufferFetch, which gathers a pixel's fragments;
+// sorting, merging and blending are here. The CPU reference osgLoA::ReferenceCompositor does the
+// very same operations (docs/abuffer.md).
 //
-// Uniforms (osgLoA::StencilRoutedABuffer::addResolveState sets them):
-//   loa_abufferColor   sampler2DMSArray: RGBA8 straight-alpha colour, one layer per routing pass
-//   loa_abufferDepth   sampler2DMSArray: window depth of the same samples (depth-stencil texture)
-//   loa_abufferSamples int: samples routed per layer (N)
-//   loa_abufferLayers  int: layers (routing passes) written this frame
 // LOA_MAX_FRAGMENTS: the arrays' size; a StateSet define (StencilRoutedABuffer sets N x max passes,
 // at most 64) overrides the default. Keep it small: llvmpipe's cost grows with it (docs/abuffer.md).
 #ifndef LOA_MAX_FRAGMENTS
 #define LOA_MAX_FRAGMENTS 64
 #endif
 
-uniform sampler2DMSArray loa_abufferColor;
-uniform sampler2DMSArray loa_abufferDepth;
-uniform int loa_abufferSamples;
-uniform int loa_abufferLayers;
+// The routed region (osgLoA::OrderIndependentTransparency::addRegionState): a mask of tiles where
+// routed draws can have put fragments; the fetch of every method returns nothing elsewhere, and
+// the storage there is not cleared (stale).
+uniform sampler2D loa_abufferRegionMask;
+uniform ivec3 loa_abufferRegion; // origin x, y of the tiles and their size in pixels; size 0: no mask
 
-// Appends the pixel's routed fragments after the first `count` entries; returns the new count.
-// Empty samples (depth 1, never routed: Algorithm 2 lines 4-7) are skipped. Routing fills the
-// samples of a layer and the layers in arrival order, so a layer without any fragment ends the
-// list. At most LOA_MAX_FRAGMENTS entries in all.
-int loa_abufferFetch(ivec2 pixel, inout vec4 colors[LOA_MAX_FRAGMENTS], inout float depths[LOA_MAX_FRAGMENTS],
-                     int count)
+bool loa_abufferInRegion(ivec2 pixel)
 {
-    for (int layer = 0; layer < loa_abufferLayers; ++layer)
-    {
-        bool any = false;
-        for (int s = 0; s < loa_abufferSamples; ++s)
-        {
-            float d = texelFetch(loa_abufferDepth, ivec3(pixel, layer), s).r;
-            if (d >= 1.0)
-                continue;
-            if (count >= LOA_MAX_FRAGMENTS)
-                return count;
-            colors[count] = texelFetch(loa_abufferColor, ivec3(pixel, layer), s);
-            depths[count] = d;
-            ++count;
-            any = true;
-        }
-        if (!any)
-            break;
-    }
-    return count;
+    if (loa_abufferRegion.z <= 0)
+        return true;
+    ivec2 t = pixel - loa_abufferRegion.xy;
+    if (t.x < 0 || t.y < 0)
+        return false;
+    t /= loa_abufferRegion.z;
+    ivec2 size = textureSize(loa_abufferRegionMask, 0);
+    if (t.x >= size.x || t.y >= size.y)
+        return false;
+    return texelFetch(loa_abufferRegionMask, t, 0).r > 0.5;
 }
 
 // Stable insertion sort of the first count entries by depth, nearest first.

@@ -1,9 +1,12 @@
-// loa-bench case "abuffer": the stencil-routed A-buffer (osgLoA::StencilRoutedABuffer) on a scene
-// of controlled depth complexity: K transparent quads covering the view, drawn in a scrambled
-// depth order, for N samples per pass and a maximum number of routing passes; frame time against
-// the error to the CPU reference composite of all K fragments (osgLoA::ReferenceCompositor).
+// loa-bench case "abuffer": the order-independent transparency methods (osgLoA::
+// OrderIndependentTransparency: the stencil-routed A-buffer for N samples per pass and a maximum
+// number of routing passes, per-pixel linked lists, weighted blended OIT) on a scene of controlled
+// depth complexity: K transparent quads covering the view, drawn in a scrambled depth order;
+// frame time against the error to the CPU reference composite of all K fragments
+// (osgLoA::ReferenceCompositor).
 #include "BenchCase.h"
 
+#include <osgLoA/compositing/OrderIndependentTransparency>
 #include <osgLoA/compositing/ReferenceCompositor>
 #include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/OffscreenRenderer>
@@ -95,44 +98,53 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer)
     cam->setProjectionMatrixAsOrtho(-1.0, 1.0, -1.0, 1.0, 0.0, 10.0);
     cam->setViewMatrix(osg::Matrix::identity());
     const int maxSamples = r->getCapabilities().maxSamples;
-    for (int n : {1, 2, 4, 8})
+    using OIT = osgLoA::OrderIndependentTransparency;
+    struct Config
     {
-        if (n > maxSamples) continue;
+        OIT::Method method;
+        int n, maxPasses;
+    };
+    std::vector<Config> configs;
+    for (int n : {1, 2, 4, 8})
         for (int maxPasses : {1, 2, 3, 4})
+            if (n <= maxSamples) configs.push_back({OIT::STENCIL_ROUTED, n, maxPasses});
+    configs.push_back({OIT::LINKED_LIST, 4, 4});
+    configs.push_back({OIT::WEIGHTED_BLENDED, 1, 1});
+    for (const Config& cfg : configs)
+    {
+        // One instance per configuration: its storage grows only to what its rows need.
+        osg::ref_ptr<OIT> ab = OIT::create(cfg.method, cfg.n, cfg.maxPasses);
+        ab->getRoutedStateSet()->setAttribute(ab->createVertexColorProgramForMethod().get());
+        osg::ref_ptr<osg::Group> root = new osg::Group;
+        root->addChild(ab->getCamera());
+        root->addChild(ab->createResolveNode().get());
+        r->setSceneData(root.get());
+        for (int k : {1, 2, 4, 8, 12, 16})
         {
-            // One A-buffer per configuration: its storage grows only to what its rows need.
-            osg::ref_ptr<osgLoA::StencilRoutedABuffer> ab = new osgLoA::StencilRoutedABuffer(n, maxPasses);
-            ab->getRoutedStateSet()->setAttribute(
-                osgLoA::StencilRoutedABuffer::createVertexColorProgram().get());
-            osg::ref_ptr<osg::Group> root = new osg::Group;
-            root->addChild(ab->getCamera());
-            root->addChild(ab->createResolveNode().get());
-            r->setSceneData(root.get());
-            for (int k : {1, 2, 4, 8, 12})
-            {
-                const std::vector<Layer> layers = layersOf(k);
-                osg::Group* g = ab->getRoutedGroup();
-                g->removeChildren(0, g->getNumChildren());
-                for (const Layer& l : layers)
-                    g->addChild(quad(l).get());
-                Row row;
-                row.times = r->timeFrames(frames);
-                const osgLoA::ABufferFrameStatistics st = ab->getLastFrameStatistics();
-                const auto cmp =
-                    osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h), 1);
-                std::ostringstream p, m, x;
-                p << "N=" << n << " max=" << maxPasses << " K=" << k << " passes=" << st.passes << " " << w
-                  << "x" << h << (st.truncated ? " truncated" : "") << " " << std::fixed
-                  << std::setprecision(1) << st.memory.megabytes() << " MiB";
-                m << std::setprecision(4) << cmp.meanDifference;
-                x << cmp.maxDifference;
-                row.parameters = p.str();
-                row.errorMean = m.str();
-                row.errorMax = x.str();
-                rows.push_back(row);
-                std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
-                          << row.errorMean << "/255, max " << row.errorMax << "/255\n";
-            }
+            const std::vector<Layer> layers = layersOf(k);
+            osg::Group* g = ab->getRoutedGroup();
+            g->removeChildren(0, g->getNumChildren());
+            for (const Layer& l : layers)
+                g->addChild(quad(l).get());
+            Row row;
+            row.times = r->timeFrames(frames);
+            const osgLoA::OITFrameStatistics st = ab->getFrameStatistics();
+            const auto cmp =
+                osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h), 1);
+            std::ostringstream p, m, x;
+            p << "method=" << OIT::methodName(cfg.method);
+            if (cfg.method == OIT::STENCIL_ROUTED) p << " N=" << cfg.n << " max=" << cfg.maxPasses;
+            p << " K=" << k << " passes=" << st.geometryPasses << " " << w << "x" << h
+              << (st.truncated ? " truncated" : "") << " " << std::fixed << std::setprecision(1)
+              << double(st.bytes) / 1048576.0 << " MiB";
+            m << std::setprecision(4) << cmp.meanDifference;
+            x << cmp.maxDifference;
+            row.parameters = p.str();
+            row.errorMean = m.str();
+            row.errorMax = x.str();
+            rows.push_back(row);
+            std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
+                      << row.errorMean << "/255, max " << row.errorMax << "/255\n";
         }
     }
     return rows;

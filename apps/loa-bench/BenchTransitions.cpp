@@ -3,6 +3,7 @@
 // styles (the default) and without (every feature in transition through the A-buffer).
 #include "BenchCase.h"
 
+#include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -87,8 +88,10 @@ void measure(const Plan& plan, unsigned frames, std::string& renderer, std::vect
                     Row row;
                     row.times = r->timeFrames(frames);
                     const auto& st = loa->getRenderer()->getStatistics();
+                    auto* stencil =
+                        dynamic_cast<osgLoA::StencilRoutedABuffer*>(loa->getRenderer()->getABuffer());
                     const osgLoA::ABufferFrameStatistics ab =
-                        loa->getRenderer()->getABuffer()->getLastFrameStatistics();
+                        stencil ? stencil->getLastFrameStatistics() : osgLoA::ABufferFrameStatistics();
                     // The fraction of pixels whose fragments did not all fit the A-buffer.
                     const double lost =
                         st.aBuffer && ab.truncated && !ab.overflowPixels.empty()

@@ -75,9 +75,9 @@ cases:
                  glFinish; error_mean = mean |error| in texels against the exact EDT,
                  error_max = fraction of texels off by more than one texel
 
-  abuffer        the stencil-routed A-buffer (docs/abuffer.md) on K full-view layers of
-                 controlled depth complexity, for N samples and a maximum of routing passes:
-                 ms per frame; error_mean / error_max = mean / max |difference| to the CPU
+  abuffer        the order-independent transparency methods (docs/abuffer.md) on K = 1..16
+                 full-view layers: the stencil-routed A-buffer for N samples and a maximum of
+                 routing passes, per-pixel linked lists, weighted blended OIT: ms per frame; error_mean / error_max = mean / max |difference| to the CPU
                  reference compositor, 0..255
   transitions    paper 004's Table 1 on the demo city at 800x600, 1280x720 and 1920x1080:
                  from the oblique camera plain rendering (loa_plain), one homogeneous style

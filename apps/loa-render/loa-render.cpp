@@ -7,6 +7,7 @@
 #include <osgLoA/abstraction/AbstractionStyleCatalog>
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureClassifier>
@@ -52,6 +53,7 @@ struct Options
     bool listStyles = false;
     unsigned samplesABuffer = 4, passesABuffer = 4;
     bool fuseStyles = true;
+    osgLoA::OrderIndependentTransparency::Method oit = osgLoA::OrderIndependentTransparency::STENCIL_ROUTED;
     loa::CameraChoice camera;
     loa::RulesChoice rules;
     int width = loa::kDefaultWidth, height = loa::kDefaultHeight, samples = 0;
@@ -132,6 +134,23 @@ Options parse(int argc, char** argv)
            "on (default): a feature in transition whose styles are all opaque is drawn once, its styles "
            "blended per fragment; off: every feature in transition goes through the A-buffer")
         ->type_name("on|off");
+    app.add_option_function<std::string>(
+           "--oit",
+           [&o](const std::string& v)
+           {
+               try
+               {
+                   o.oit = osgLoA::OrderIndependentTransparency::methodFromName(v);
+               }
+               catch (const std::invalid_argument& e)
+               {
+                   throw loa::UsageError(std::string("--oit: ") + e.what());
+               }
+           },
+           "order-independent transparency of what fused styles cannot draw: stencil-routed (default, the "
+           "paper's A-buffer), linked-list (per-pixel linked lists, exact, one pass) or weighted-blended "
+           "(one pass, approximate)")
+        ->type_name("NAME");
     app.add_option_function<std::string>(
            "--program",
            [&o](const std::string& p)
@@ -353,6 +372,7 @@ int run(const Options& o)
         rs.samples = o.samplesABuffer;
         rs.maxPasses = o.passesABuffer;
         rs.fuseStyles = o.fuseStyles;
+        rs.oit = o.oit;
         loaNode->getRenderer()->setSettings(rs);
         osgLoA::StylePreparation::Options prep;
         prep.progress = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -434,8 +454,9 @@ int run(const Options& o)
             std::cerr << "loa-render: warning: no feature of the scenario is in view ("
                       << loaNode->getFeatureIndex().size()
                       << " features in the model): the frame shows the model unstyled or nothing\n";
+        auto* stencil = dynamic_cast<osgLoA::StencilRoutedABuffer*>(loaNode->getRenderer()->getABuffer());
         const osgLoA::ABufferFrameStatistics ab =
-            loaNode->getRenderer()->getABuffer()->getLastFrameStatistics();
+            stencil ? stencil->getLastFrameStatistics() : osgLoA::ABufferFrameStatistics();
         const auto mem = osgLoA::TransitionRenderer::memory(
             o.width, o.height, unsigned(std::max(ab.samples, 1)), unsigned(std::max(ab.memory.layers, 1)),
             st.pingPongBuffer, st.unsharp, loaNode->getRenderer()->getUnsharpSigma());

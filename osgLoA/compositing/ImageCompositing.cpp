@@ -38,11 +38,7 @@ ImageCompositing::ImageCompositing()
     }
     osg::StateSet* ss = _switch->getOrCreateStateSet();
     ss->setDataVariance(osg::Object::DYNAMIC);
-    ss->setAttributeAndModes(
-        ShaderLibrary::createProgram(
-            "compose", {"loa_compose.vert.glsl", "loa_compose.frag.glsl", "loa_abuffer_resolve.frag.glsl"})
-            .get(),
-        osg::StateAttribute::ON | osg::StateAttribute::OVERRIDE | osg::StateAttribute::PROTECTED);
+    setFetchShader("loa_abuffer_fetch_stencil.frag.glsl");
     ss->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA),
                              osg::StateAttribute::ON | osg::StateAttribute::OVERRIDE |
                                  osg::StateAttribute::PROTECTED);
@@ -73,6 +69,17 @@ ImageCompositing::ImageCompositing()
         u->setDataVariance(osg::Object::DYNAMIC);
         ss->addUniform(u);
     }
+}
+
+void ImageCompositing::setFetchShader(const std::string& name)
+{
+    if (name == _fetchShader) return;
+    _fetchShader = name;
+    getStateSet()->setAttributeAndModes(
+        ShaderLibrary::createProgram("compose", {"loa_compose.vert.glsl", "loa_compose.frag.glsl",
+                                                 "loa_abuffer_resolve.frag.glsl", name.c_str()})
+            .get(),
+        osg::StateAttribute::ON | osg::StateAttribute::OVERRIDE | osg::StateAttribute::PROTECTED);
 }
 
 void ImageCompositing::setGeometryBuffer(GeometryBuffer* g)

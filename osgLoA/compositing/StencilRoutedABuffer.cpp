@@ -3,6 +3,9 @@
 #include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/ShaderLibrary>
 
+#include "ContextObjects.h"
+#include "RenderTarget.h"
+
 #include <osg/BlendFunc>
 #include <osg/ColorMask>
 #include <osg/ContextData>
@@ -19,7 +22,7 @@
 #include <osgUtil/StateGraph>
 
 #include <algorithm>
-#include <atomic>
+#include <functional>
 #include <map>
 #include <stdexcept>
 
@@ -120,99 +123,6 @@ struct GLFunctions
     }
 };
 
-/** Deferred deletion of the A-buffer's GL names in their context (osg::flushDeletedGLObjects). */
-template <int Kind> class ABufferObjectManager : public osg::GLObjectManager
-{
-public:
-    explicit ABufferObjectManager(unsigned int contextID)
-        : osg::GLObjectManager("ABufferObjectManager", contextID)
-    {
-    }
-    void deleteGLObject(GLuint name) override
-    {
-        if (Kind == 0)
-        {
-            glDeleteTextures(1, &name);
-            return;
-        }
-        GLFunctions f;
-        if (Kind == 1 && GLFunctions::load(f.deleteFramebuffers, "glDeleteFramebuffers"))
-            f.deleteFramebuffers(1, &name);
-        if (Kind == 2 && GLFunctions::load(f.deleteQueries, "glDeleteQueries")) f.deleteQueries(1, &name);
-    }
-};
-using TextureDeleter = ABufferObjectManager<0>;
-using FramebufferDeleter = ABufferObjectManager<1>;
-using QueryDeleter = ABufferObjectManager<2>;
-
-/** A sampler binding a per-context GL_TEXTURE_2D_MULTISAMPLE_ARRAY name owned by the A-buffer. */
-class ABufferTexture : public osg::Texture
-{
-public:
-    ABufferTexture() = default;
-    ABufferTexture(const ABufferTexture& o, const osg::CopyOp& op = osg::CopyOp::SHALLOW_COPY)
-        : osg::Texture(o, op), _names(o._names)
-    {
-    }
-    META_StateAttribute(osgLoA, ABufferTexture, TEXTURE);
-
-    int compare(const osg::StateAttribute& sa) const override
-    {
-        if (this == &sa) return 0;
-        const int t = compareTexture(static_cast<const osg::Texture&>(sa));
-        if (t != 0) return t;
-        return this < &sa ? -1 : 1;
-    }
-    GLenum getTextureTarget() const override { return GL_TEXTURE_2D_MULTISAMPLE_ARRAY; }
-    bool getModeUsage(osg::StateAttribute::ModeUsage&) const override { return false; }
-    void setImage(unsigned int, osg::Image*) override {}
-    osg::Image* getImage(unsigned int) override { return nullptr; }
-    const osg::Image* getImage(unsigned int) const override { return nullptr; }
-    unsigned int getNumImages() const override { return 0; }
-    void allocateMipmap(osg::State&) const override {}
-    void computeInternalFormat() const override {}
-    void releaseGLObjects(osg::State* = nullptr) const override {} // the A-buffer owns the names
-
-    void apply(osg::State& state) const override
-    {
-        const unsigned ctx = state.getContextID();
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, ctx < _names.size() ? _names[ctx] : 0);
-    }
-
-    void setTextureName(unsigned ctx, GLuint name)
-    {
-        if (_names.size() <= ctx) _names.resize(ctx + 1, 0);
-        _names[ctx] = name;
-    }
-
-private:
-    std::vector<GLuint> _names;
-};
-
-osg::ref_ptr<osg::Geometry> fullScreenQuad()
-{
-    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
-    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-    v->push_back(osg::Vec3(-1.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(1.0f, -1.0f, 0.0f));
-    v->push_back(osg::Vec3(1.0f, 1.0f, 0.0f));
-    v->push_back(osg::Vec3(-1.0f, 1.0f, 0.0f));
-    g->setVertexArray(v.get());
-    g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLE_FAN, 0, 4));
-    g->setUseDisplayList(false);
-    g->setUseVertexBufferObjects(true);
-    g->setCullingActive(false);
-    // Clip-space vertices: an empty bound keeps the quad out of near/far computation.
-    struct EmptyBound : public osg::Drawable::ComputeBoundingBoxCallback
-    {
-        osg::BoundingBox computeBound(const osg::Drawable&) const override { return osg::BoundingBox(); }
-    };
-    g->setComputeBoundingBoxCallback(new EmptyBound);
-    return g;
-}
-
-std::atomic<unsigned> g_instances{0};
-
 } // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -229,18 +139,15 @@ struct StencilRoutedABuffer::Impl
         int width = 0, height = 0, samples = 0, allocatedSamples = 0, layers = 0;
     };
 
-    class RoutingBin;
-    class BindFramebuffer;
-
     explicit Impl(StencilRoutedABuffer* o) : owner(o) {}
 
     StencilRoutedABuffer* owner;
     std::mutex mutex;                        // contexts, statistics
     std::map<unsigned, PerContext> contexts; // stable references
     ABufferFrameStatistics last;
+    OITFrameStatistics lastOit;
     bool warnedClamp = false;
     bool warnedUnusable = false;
-    osg::ref_ptr<RoutingBin> prototype;
     osg::ref_ptr<osg::StateSet> routingFull, routingRaster, clearState, initState, countState;
     osg::ref_ptr<osg::Geometry> quad;
     /** The viewport of the frame's passes, in every state set the passes apply. Without it,
@@ -304,8 +211,8 @@ struct StencilRoutedABuffer::Impl
         pc.height = h;
         pc.samples = n;
         pc.layers = layers;
-        static_cast<ABufferTexture*>(owner->_colorTexture.get())->setTextureName(ctx, pc.color);
-        static_cast<ABufferTexture*>(owner->_depthTexture.get())->setTextureName(ctx, pc.depth);
+        static_cast<detail::ContextTexture*>(owner->_colorTexture.get())->setTextureName(ctx, pc.color);
+        static_cast<detail::ContextTexture*>(owner->_depthTexture.get())->setTextureName(ctx, pc.depth);
         pc.gl.namedFramebufferTextureLayer(pc.fbo, GL_COLOR_ATTACHMENT0, pc.color, 0, 0);
         pc.gl.namedFramebufferTextureLayer(pc.fbo, GL_DEPTH_STENCIL_ATTACHMENT, pc.depth, 0, 0);
         const GLenum status = pc.gl.checkNamedFramebufferStatus(pc.fbo, GL_FRAMEBUFFER);
@@ -317,69 +224,19 @@ struct StencilRoutedABuffer::Impl
     }
 
     void drawPasses(osgUtil::RenderBin& bin, osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous);
-    void drawLeaves(osgUtil::RenderBin& bin, osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous);
 };
 
-/** The render bin of the routed geometry: its draw runs the routing passes. */
-class StencilRoutedABuffer::Impl::RoutingBin : public osgUtil::RenderBin
+void StencilRoutedABuffer::drawRouted(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
+                                      osgUtil::RenderLeaf*& previous)
 {
-public:
-    RoutingBin() = default;
-    explicit RoutingBin(StencilRoutedABuffer* owner) : _owner(owner) {}
-    RoutingBin(const RoutingBin& o, const osg::CopyOp& op = osg::CopyOp::SHALLOW_COPY)
-        : osgUtil::RenderBin(o, op), _owner(o._owner)
-    {
-    }
-    META_Object(osgLoA, RoutingBin);
+    _impl->drawPasses(bin, ri, previous);
+}
 
-    void drawImplementation(osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous) override
-    {
-        osg::ref_ptr<StencilRoutedABuffer> owner;
-        if (_owner.lock(owner))
-            owner->_impl->drawPasses(*this, ri, previous);
-        else
-            osgUtil::RenderBin::drawImplementation(ri, previous);
-    }
-    void drawBase(osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous)
-    {
-        osgUtil::RenderBin::drawImplementation(ri, previous);
-    }
-
-private:
-    osg::observer_ptr<StencilRoutedABuffer> _owner;
-};
-
-/** The camera's initial draw callback: binds the A-buffer's framebuffer, so that what the stage
- *  does before the routing bin (draw buffer, viewport) goes to it and not to another target. */
-class StencilRoutedABuffer::Impl::BindFramebuffer : public osg::Camera::DrawCallback
+void StencilRoutedABuffer::bindTarget(osg::RenderInfo& ri)
 {
-public:
-    explicit BindFramebuffer(StencilRoutedABuffer* owner) : _owner(owner) {}
-    void operator()(osg::RenderInfo& ri) const override
-    {
-        osg::ref_ptr<StencilRoutedABuffer> owner;
-        if (!_owner.lock(owner)) return;
-        Impl& impl = *owner->_impl;
-        PerContext& pc = impl.context(ri.getState()->getContextID());
-        if (!pc.initialised) impl.initialise(pc);
-        if (pc.usable) pc.gl.bindFramebuffer(GL_FRAMEBUFFER, pc.fbo);
-    }
-
-private:
-    osg::observer_ptr<StencilRoutedABuffer> _owner;
-};
-
-void StencilRoutedABuffer::Impl::drawLeaves(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
-                                            osgUtil::RenderLeaf*& previous)
-{
-    osg::State& state = *ri.getState();
-    static_cast<RoutingBin&>(bin).drawBase(ri, previous);
-    // Back to the root of the state graph, so that the next pass starts as the first did.
-    if (previous)
-    {
-        osgUtil::StateGraph::moveToRootStateGraph(state, previous->_parent->_parent);
-        previous = nullptr;
-    }
+    Impl::PerContext& pc = _impl->context(ri.getState()->getContextID());
+    if (!pc.initialised) _impl->initialise(pc);
+    if (pc.usable) pc.gl.bindFramebuffer(GL_FRAMEBUFFER, pc.fbo);
 }
 
 void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
@@ -425,6 +282,30 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
     // Same object, new values: make osg::State apply it again.
     state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
 
+    // The tiles the routed draws touch: every full-screen pass below is scissored to them.
+    const RoutedRegion region = owner->updateRegion(bin, *vp);
+    OITFrameStatistics oit;
+    owner->fillRegionStatistics(oit, region);
+    oit.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
+    oit.width = w;
+    oit.height = h;
+    if (region.isEmpty())
+    {
+        // Nothing routed in view: no pass at all (the resolve's mask is empty too).
+        const GLuint defaultFbo =
+            state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
+        pc.gl.bindFramebuffer(GL_FRAMEBUFFER, defaultFbo);
+        owner->_layersUniform->set(0);
+        oit.bytes = ABufferMemory::of(pc.width, pc.height, pc.allocatedSamples, pc.layers).bytes();
+        std::lock_guard<std::mutex> lock(mutex);
+        last = ABufferFrameStatistics();
+        last.frameNumber = oit.frameNumber;
+        last.width = w;
+        last.height = h;
+        lastOit = oit;
+        return;
+    }
+
     bool namesChanged = allocate(ctx, pc, w, h, n, std::max(1, pc.layers));
     ABufferFrameStatistics stats;
     stats.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
@@ -438,6 +319,7 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
 
     const unsigned lastSample = 1u << unsigned(n - 1);
     const osg::Drawable* quadDrawable = quad.get();
+    auto inRegion = [&](const std::function<void()>& f) { forEachRectangle(state, region, f); };
     int p = 0;
     for (;;)
     {
@@ -450,7 +332,7 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
         glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
         glClearDepth(1.0);
         glClearStencil(0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        inRegion([] { glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT); });
 
         // Sample i of pass p starts at i + 2 + pN: the (pN + i + 1)-th fragment finds it at 2.
         state.apply(initState.get());
@@ -458,17 +340,17 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
         {
             pc.gl.sampleMaski(0, 1u << unsigned(i));
             glStencilFunc(GL_ALWAYS, i + 2 + p * n, 0xFF);
-            quadDrawable->draw(ri);
+            inRegion([&] { quadDrawable->draw(ri); });
         }
         state.haveAppliedAttribute(osg::StateAttribute::STENCIL);
 
-        drawLeaves(bin, ri, previous);
+        StencilRoutedABuffer::drawLeaves(bin, ri, previous);
 
         // Overflow: the last routed sample's stencil reached 0 (saturating DECR).
         state.apply(countState.get());
         pc.gl.sampleMaski(0, lastSample);
         pc.gl.beginQuery(GL_SAMPLES_PASSED, pc.query);
-        quadDrawable->draw(ri);
+        inRegion([&] { quadDrawable->draw(ri); });
         pc.gl.endQuery(GL_SAMPLES_PASSED);
         GLuint overflow = 0;
         pc.gl.getQueryObjectuiv(pc.query, GL_QUERY_RESULT, &overflow);
@@ -506,40 +388,27 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
 
     owner->_layersUniform->set(stats.passes);
     owner->_samplesUniform->set(n);
+    oit.geometryPasses = stats.passes;
+    oit.discardedPasses = stats.discardedPasses;
+    oit.truncated = stats.truncated;
+    oit.bytes = stats.memory.bytes();
     std::lock_guard<std::mutex> lock(mutex);
     last = stats;
+    lastOit = oit;
 }
 
 // ------------------------------------------------------------------------------------------
 
-StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses) : _samples(1), _maxPasses(1)
+StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses)
+    : OrderIndependentTransparency("StencilRoutedABuffer", kRenderBinNumber), _samples(1), _maxPasses(1)
 {
     setSamples(samples);
     setMaxPasses(maxPasses);
     _impl = new Impl(this);
-    _binName = "loa_abuffer_" + std::to_string(g_instances.fetch_add(1));
 
-    _camera = new osg::Camera;
-    _camera->setName("StencilRoutedABuffer");
-    _camera->setRenderOrder(osg::Camera::PRE_RENDER);
-    _camera->setReferenceFrame(osg::Transform::RELATIVE_RF);
-    _camera->setViewMatrix(osg::Matrix::identity());
-    _camera->setProjectionMatrix(osg::Matrix::identity());
-    _camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
-    _camera->setClearMask(0);
-    _camera->setAllowEventFocus(false);
-    _camera->setInitialDrawCallback(new Impl::BindFramebuffer(this));
-
-    _routedGroup = new osg::Group;
-    _routedGroup->setName("StencilRoutedABuffer routed");
-    _routedStateSet = _routedGroup->getOrCreateStateSet();
-    _routedStateSet->setRenderBinDetails(kRenderBinNumber, _binName,
-                                         osg::StateSet::OVERRIDE_RENDERBIN_DETAILS);
-    _camera->addChild(_routedGroup.get());
-
-    _colorTexture = new ABufferTexture;
+    _colorTexture = new detail::ContextTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY);
     _colorTexture->setName("loa_abufferColor");
-    _depthTexture = new ABufferTexture;
+    _depthTexture = new detail::ContextTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY);
     _depthTexture->setName("loa_abufferDepth");
     _layersUniform = new osg::Uniform("loa_abufferLayers", 0);
     _layersUniform->setDataVariance(osg::Object::DYNAMIC);
@@ -604,16 +473,11 @@ StencilRoutedABuffer::StencilRoutedABuffer(int samples, int maxPasses) : _sample
     };
     impl.initState = passState(osg::Stencil::ALWAYS);
     impl.countState = passState(osg::Stencil::EQUAL);
-    impl.quad = fullScreenQuad();
-
-    impl.prototype = new Impl::RoutingBin(this);
-    impl.prototype->setStateSet(impl.routingFull.get());
-    osgUtil::RenderBin::addRenderBinPrototype(_binName, impl.prototype.get());
+    impl.quad = detail::createFullScreenTriangle();
 }
 
 StencilRoutedABuffer::~StencilRoutedABuffer()
 {
-    osgUtil::RenderBin::removeRenderBinPrototype(_impl->prototype.get());
     releaseGLObjects(nullptr);
     delete _impl;
 }
@@ -639,22 +503,6 @@ void StencilRoutedABuffer::setMaxPasses(int passes)
 int StencilRoutedABuffer::getMaxFragments() const
 {
     return int(std::min<long long>(64, (long long)(_samples) * (long long)(_maxPasses)));
-}
-
-void StencilRoutedABuffer::setMaxFragmentsDefine(osg::StateSet* ss, int extra)
-{
-    _defineStateSets.emplace_back(ss, extra);
-    updateDefines();
-}
-
-void StencilRoutedABuffer::updateDefines()
-{
-    for (auto& d : _defineStateSets)
-    {
-        osg::ref_ptr<osg::StateSet> ss;
-        if (d.first.lock(ss))
-            ss->setDefine("LOA_MAX_FRAGMENTS", std::to_string(getMaxFragments() + d.second));
-    }
 }
 
 bool StencilRoutedABuffer::rasterCoverageByDefault(const GLCapabilities& caps)
@@ -697,17 +545,6 @@ void StencilRoutedABuffer::checkSamples(int samples, const GLCapabilities& caps)
                                     std::to_string(caps.maxSamples) + " of " + caps.renderer + ")");
 }
 
-void StencilRoutedABuffer::setSize(int width, int height)
-{
-    if (width == _width && height == _height) return;
-    _width = std::max(0, width);
-    _height = std::max(0, height);
-    if (_width > 0 && _height > 0)
-        _camera->setViewport(0, 0, _width, _height);
-    else
-        _camera->setViewport(nullptr);
-}
-
 void StencilRoutedABuffer::addResolveState(osg::StateSet* ss, unsigned colorUnit, unsigned depthUnit)
 {
     ss->setTextureAttribute(colorUnit, _colorTexture.get());
@@ -718,42 +555,16 @@ void StencilRoutedABuffer::addResolveState(osg::StateSet* ss, unsigned colorUnit
     ss->addUniform(_samplesUniform.get());
 }
 
-osg::ref_ptr<osg::Node> StencilRoutedABuffer::createResolveNode(float mergeEpsilon, unsigned colorUnit,
-                                                                unsigned depthUnit)
-{
-    osg::ref_ptr<osg::Geometry> quad = fullScreenQuad();
-    quad->setName("StencilRoutedABuffer resolve");
-    osg::StateSet* ss = quad->getOrCreateStateSet();
-    ss->setAttribute(ShaderLibrary::createProgram("abuffer resolve", {"loa_abuffer_fullscreen.vert.glsl",
-                                                                      "loa_abuffer_resolve.frag.glsl",
-                                                                      "loa_abuffer_resolve_main.frag.glsl"})
-                         .get());
-    addResolveState(ss, colorUnit, depthUnit);
-    setMaxFragmentsDefine(ss);
-    ss->addUniform(new osg::Uniform("loa_abufferMergeEpsilon", mergeEpsilon));
-    ss->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA), osg::StateAttribute::ON);
-    ss->setAttribute(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
-    ss->setMode(GL_DEPTH_TEST, osg::StateAttribute::OFF);
-    ss->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
-    ss->setRenderBinDetails(100, "RenderBin");
-    return quad;
-}
-
-osg::ref_ptr<osg::Program> StencilRoutedABuffer::createVertexColorProgram()
-{
-    osg::ref_ptr<osg::Program> p = ShaderLibrary::createProgram(
-        "abuffer vertex colour", {"loa_plain.vert.glsl", "loa_abuffer_write.frag.glsl"});
-    p->addShader(new osg::Shader(osg::Shader::FRAGMENT, "#version 450 compatibility\n"
-                                                        "in vec4 loa_color;\n"
-                                                        "void loa_abufferWrite(vec4 straightAlphaColor);\n"
-                                                        "void main() { loa_abufferWrite(loa_color); }\n"));
-    return p;
-}
-
 ABufferFrameStatistics StencilRoutedABuffer::getLastFrameStatistics() const
 {
     std::lock_guard<std::mutex> lock(_impl->mutex);
     return _impl->last;
+}
+
+OITFrameStatistics StencilRoutedABuffer::getFrameStatistics() const
+{
+    std::lock_guard<std::mutex> lock(_impl->mutex);
+    return _impl->lastOit;
 }
 
 ABufferMemory StencilRoutedABuffer::getAllocatedMemory() const
@@ -787,13 +598,13 @@ void StencilRoutedABuffer::releaseGLObjects(osg::State* state) const
         }
         else
         {
-            if (pc.color) osg::get<TextureDeleter>(ctx)->scheduleGLObjectForDeletion(pc.color);
-            if (pc.depth) osg::get<TextureDeleter>(ctx)->scheduleGLObjectForDeletion(pc.depth);
-            if (pc.fbo) osg::get<FramebufferDeleter>(ctx)->scheduleGLObjectForDeletion(pc.fbo);
-            if (pc.query) osg::get<QueryDeleter>(ctx)->scheduleGLObjectForDeletion(pc.query);
+            if (pc.color) detail::scheduleDeletion(detail::GL_NAME_TEXTURE, ctx, pc.color);
+            if (pc.depth) detail::scheduleDeletion(detail::GL_NAME_TEXTURE, ctx, pc.depth);
+            if (pc.fbo) detail::scheduleDeletion(detail::GL_NAME_FRAMEBUFFER, ctx, pc.fbo);
+            if (pc.query) detail::scheduleDeletion(detail::GL_NAME_QUERY, ctx, pc.query);
         }
-        static_cast<ABufferTexture*>(_colorTexture.get())->setTextureName(ctx, 0);
-        static_cast<ABufferTexture*>(_depthTexture.get())->setTextureName(ctx, 0);
+        static_cast<detail::ContextTexture*>(_colorTexture.get())->setTextureName(ctx, 0);
+        static_cast<detail::ContextTexture*>(_depthTexture.get())->setTextureName(ctx, 0);
         pc = Impl::PerContext();
     }
 }

@@ -31,7 +31,7 @@ namespace
 constexpr unsigned kN = UsageScenario::kMaxConfigurations;
 constexpr unsigned kFrontDepthUnit = 14;
 constexpr int kFirstRenderOrder = 1000;
-constexpr unsigned kABufferColorUnit = 12, kABufferDepthUnit = 13;
+constexpr unsigned kABufferColorUnit = 12, kABufferDepthUnit = 13, kABufferRegionUnit = 15;
 
 const char* const kVertexShaders[] = {"loa_style.vert.glsl", "loa_landmark.vert.glsl"};
 
@@ -329,24 +329,31 @@ void TransitionRenderer::setSettings(const Settings& s)
         throw std::invalid_argument("TransitionRenderer: at least 1 routing pass is needed");
     if (!(s.depthEpsilon >= 0.0f) || s.depthEpsilon > 0.01f)
         throw std::invalid_argument("TransitionRenderer: depth epsilon must be in [0, 0.01]");
-    const bool rebuild =
-        !_aBuffer.valid() || s.samples != _settings.samples || s.maxPasses != _settings.maxPasses;
+    const bool rebuild = !_aBuffer.valid() || s.samples != _settings.samples ||
+                         s.maxPasses != _settings.maxPasses || s.oit != _settings.oit;
     _settings = s;
     if (rebuild)
     {
         if (_aBuffer.valid() && _proxy[PROXY_ABUFFER].valid())
             _aBuffer->getRoutedGroup()->removeChild(_proxy[PROXY_ABUFFER].get());
         if (_aBuffer.valid() && _internal.valid()) _internal->removeChild(_aBuffer->getCamera());
-        _aBuffer = new StencilRoutedABuffer(int(s.samples), int(s.maxPasses));
+        _aBuffer = OrderIndependentTransparency::create(s.oit, int(s.samples), int(s.maxPasses));
         // Same matrices as the G-buffer (the front-depth test compares their depths).
         _aBuffer->getCamera()->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
         _aBuffer->getCamera()->setRenderOrder(osg::Camera::PRE_RENDER, kFirstRenderOrder + 1);
         if (_proxy[PROXY_ABUFFER].valid()) _aBuffer->getRoutedGroup()->addChild(_proxy[PROXY_ABUFFER].get());
         _aBuffer->addResolveState(_compositing->getStateSet(), kABufferColorUnit, kABufferDepthUnit);
+        _aBuffer->addRegionState(_compositing->getStateSet(), kABufferRegionUnit);
+        _compositing->setFetchShader(_aBuffer->getFetchShaderName());
         // Local arrays sized to the fragments that can occur: the A-buffer's N x passes plus the
         // G-buffer's opaque colour and the ping-pong fragment.
         _aBuffer->setMaxFragmentsDefine(_compositing->getStateSet(), 2);
         if (_internal.valid()) _internal->addChild(_aBuffer->getCamera());
+        // The A-buffer draws link the method's write shader.
+        for (auto& st : _styles)
+            if (st.aBuffer.valid() && st.style.valid())
+                st.aBuffer->setAttributeAndModes(
+                    program(st.style->getFragmentShader(), "LOA_PASS_ABUFFER").get());
     }
     _compositing->setMergeEpsilon(s.mergeSurfaces ? s.depthEpsilon : -1.0f);
     for (auto& st : _styles)
@@ -356,15 +363,16 @@ void TransitionRenderer::setSettings(const Settings& s)
 
 osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleShader, const char* passDefine)
 {
-    const std::string key = styleShader + "|" + passDefine;
+    const bool routed = std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos;
+    const std::string key =
+        styleShader + "|" + passDefine + (routed ? std::string("|") + _aBuffer->getWriteShaderName() : "");
     auto it = _programs.find(key);
     if (it != _programs.end()) return it->second;
     osg::ref_ptr<osg::Program> p = new osg::Program;
     p->setName("loa-" + (styleShader.empty() ? std::string("depth") : styleShader) + "-" + passDefine);
     addFeatureShaders(*p, !styleShader.empty());
     if (!styleShader.empty()) p->addShader(ShaderLibrary::createShader(styleShader).get());
-    if (std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos)
-        p->addShader(ShaderLibrary::createShader("loa_abuffer_write.frag.glsl").get());
+    if (routed) p->addShader(ShaderLibrary::createShader(_aBuffer->getWriteShaderName()).get());
     p->addShader(passMain(passDefine).get());
     _programs[key] = p;
     return p;
@@ -696,6 +704,9 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
     _depthAny = false;
     const auto& features = evaluator.features();
     const LandmarkDeformation* deformation = evaluator.getScenario()->getLandmarkDeformation();
+    // Deformed landmarks leave their drawables' bounds: the A-buffer's routed region (those
+    // bounds projected) would clip them.
+    _aBuffer->setRestrictToRoutedRegion(deformation == nullptr);
     const FeatureIndex& index = _node.getFeatureIndex();
     const LandmarkDeformation::View view = LandmarkDeformation::View::fromViewToScene(_viewToSceneMatrix);
     for (std::size_t i = 0; i < features.size(); ++i)
@@ -961,6 +972,7 @@ void TransitionRenderer::releaseGLObjects(osg::State* state) const
 {
     _gbuffer->getCamera()->releaseGLObjects(state);
     _aBuffer->getCamera()->releaseGLObjects(state);
+    _aBuffer->releaseGLObjects(state);
     _pingPong->getCamera(0)->releaseGLObjects(state);
     _pingPong->getCamera(1)->releaseGLObjects(state);
     for (unsigned p = 0; p < DepthUnsharpMask::NUM_PASSES; ++p)

@@ -1,0 +1,296 @@
+// OrderIndependentTransparency: what the three OIT methods share (the routed camera and render
+// bin, the resolve node, method names); docs/abuffer.md.
+#include <osgLoA/compositing/LinkedListABuffer>
+#include <osgLoA/compositing/OrderIndependentTransparency>
+#include <osgLoA/compositing/StencilRoutedABuffer>
+#include <osgLoA/compositing/WeightedBlendedOIT>
+#include <osgLoA/render/ShaderLibrary>
+
+#include "RenderTarget.h"
+
+#include <osg/BlendFunc>
+#include <osg/Depth>
+#include <osg/GL>
+#include <osg/Scissor>
+#include <osg/State>
+#include <osgUtil/RenderBin>
+#include <osgUtil/StateGraph>
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+
+namespace osgLoA
+{
+
+namespace
+{
+std::atomic<unsigned> g_instances{0};
+
+/** The render bin of the routed geometry: its draw runs the method's passes. */
+class RoutingBin : public osgUtil::RenderBin
+{
+public:
+    RoutingBin() = default;
+    explicit RoutingBin(OrderIndependentTransparency* owner) : _owner(owner) {}
+    RoutingBin(const RoutingBin& o, const osg::CopyOp& op = osg::CopyOp::SHALLOW_COPY)
+        : osgUtil::RenderBin(o, op), _owner(o._owner)
+    {
+    }
+    META_Object(osgLoA, RoutingBin);
+
+    void drawImplementation(osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous) override
+    {
+        osg::ref_ptr<OrderIndependentTransparency> owner;
+        if (_owner.lock(owner))
+            owner->drawRouted(*this, ri, previous);
+        else
+            osgUtil::RenderBin::drawImplementation(ri, previous);
+    }
+    void drawBase(osg::RenderInfo& ri, osgUtil::RenderLeaf*& previous)
+    {
+        osgUtil::RenderBin::drawImplementation(ri, previous);
+    }
+
+private:
+    osg::observer_ptr<OrderIndependentTransparency> _owner;
+};
+
+/** The camera's initial draw callback: binds the method's framebuffer before the stage draws. */
+class BindTarget : public osg::Camera::DrawCallback
+{
+public:
+    explicit BindTarget(OrderIndependentTransparency* owner) : _owner(owner) {}
+    void operator()(osg::RenderInfo& ri) const override
+    {
+        osg::ref_ptr<OrderIndependentTransparency> owner;
+        if (_owner.lock(owner)) owner->bindTarget(ri);
+    }
+
+private:
+    osg::observer_ptr<OrderIndependentTransparency> _owner;
+};
+} // namespace
+
+const char* OrderIndependentTransparency::methodName(Method m)
+{
+    switch (m)
+    {
+    case STENCIL_ROUTED:
+        return "stencil-routed";
+    case LINKED_LIST:
+        return "linked-list";
+    case WEIGHTED_BLENDED:
+        return "weighted-blended";
+    }
+    return "unknown";
+}
+
+std::vector<OrderIndependentTransparency::Method> OrderIndependentTransparency::methods()
+{
+    return {STENCIL_ROUTED, LINKED_LIST, WEIGHTED_BLENDED};
+}
+
+OrderIndependentTransparency::Method OrderIndependentTransparency::methodFromName(const std::string& name)
+{
+    std::string known;
+    for (Method m : methods())
+    {
+        if (name == methodName(m)) return m;
+        known += std::string(known.empty() ? "" : ", ") + methodName(m);
+    }
+    throw std::invalid_argument("unknown order-independent transparency method '" + name +
+                                "' (known: " + known + ")");
+}
+
+osg::ref_ptr<OrderIndependentTransparency> OrderIndependentTransparency::create(Method m, int samples,
+                                                                                int maxPasses)
+{
+    switch (m)
+    {
+    case STENCIL_ROUTED:
+        return new StencilRoutedABuffer(samples, maxPasses);
+    case LINKED_LIST:
+        return new LinkedListABuffer(std::max(1, samples) * std::max(1, maxPasses));
+    case WEIGHTED_BLENDED:
+        return new WeightedBlendedOIT;
+    }
+    throw std::invalid_argument("unknown order-independent transparency method " + std::to_string(int(m)));
+}
+
+OrderIndependentTransparency::OrderIndependentTransparency(const std::string& name, int renderBinNumber)
+{
+    _binName = "loa_oit_" + std::to_string(g_instances.fetch_add(1));
+    _camera = new osg::Camera;
+    _camera->setName(name);
+    _camera->setRenderOrder(osg::Camera::PRE_RENDER);
+    _camera->setReferenceFrame(osg::Transform::RELATIVE_RF);
+    _camera->setViewMatrix(osg::Matrix::identity());
+    _camera->setProjectionMatrix(osg::Matrix::identity());
+    _camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    _camera->setClearMask(0);
+    _camera->setAllowEventFocus(false);
+    _camera->setInitialDrawCallback(new BindTarget(this));
+
+    _routedGroup = new osg::Group;
+    _routedGroup->setName(name + " routed");
+    _routedStateSet = _routedGroup->getOrCreateStateSet();
+    _routedStateSet->setRenderBinDetails(renderBinNumber, _binName,
+                                         osg::StateSet::OVERRIDE_RENDERBIN_DETAILS);
+    _camera->addChild(_routedGroup.get());
+
+    _regionImage = new osg::Image;
+    _regionImage->allocateImage(kMaskTiles, kMaskTiles, 1, GL_RED, GL_UNSIGNED_BYTE);
+    _regionImage->setInternalTextureFormat(GL_R8);
+    std::fill(_regionImage->data(), _regionImage->data() + kMaskTiles * kMaskTiles, 0);
+    _regionImage->setDataVariance(osg::Object::DYNAMIC);
+    _regionTexture = new osg::Texture2D(_regionImage.get());
+    _regionTexture->setFilter(osg::Texture::MIN_FILTER, osg::Texture::NEAREST);
+    _regionTexture->setFilter(osg::Texture::MAG_FILTER, osg::Texture::NEAREST);
+    _regionTexture->setResizeNonPowerOfTwoHint(false);
+    _regionTexture->setUnRefImageDataAfterApply(false);
+    _regionTexture->setDataVariance(osg::Object::DYNAMIC);
+    _regionUniform = new osg::Uniform("loa_abufferRegion", 0, 0, 0);
+    _regionUniform->setDataVariance(osg::Object::DYNAMIC);
+
+    _binPrototype = new RoutingBin(this);
+    osgUtil::RenderBin::addRenderBinPrototype(_binName, _binPrototype.get());
+}
+
+OrderIndependentTransparency::~OrderIndependentTransparency()
+{
+    osgUtil::RenderBin::removeRenderBinPrototype(_binPrototype.get());
+}
+
+void OrderIndependentTransparency::drawLeaves(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
+                                              osgUtil::RenderLeaf*& previous)
+{
+    static_cast<RoutingBin&>(bin).drawBase(ri, previous);
+    // Back to the root of the state graph, so that the next pass starts as the first did.
+    if (previous)
+    {
+        osgUtil::StateGraph::moveToRootStateGraph(*ri.getState(), previous->_parent->_parent);
+        previous = nullptr;
+    }
+}
+
+void OrderIndependentTransparency::setSize(int width, int height)
+{
+    if (width == _width && height == _height) return;
+    _width = std::max(0, width);
+    _height = std::max(0, height);
+    if (_width > 0 && _height > 0)
+        _camera->setViewport(0, 0, _width, _height);
+    else
+        _camera->setViewport(nullptr);
+}
+
+void OrderIndependentTransparency::addRegionState(osg::StateSet* ss, unsigned unit)
+{
+    ss->setTextureAttribute(unit, _regionTexture.get());
+    ss->addUniform(new osg::Uniform("loa_abufferRegionMask", int(unit)));
+    ss->addUniform(_regionUniform.get());
+}
+
+RoutedRegion OrderIndependentTransparency::updateRegion(const osgUtil::RenderBin& bin,
+                                                        const osg::Viewport& vp)
+{
+    RoutedRegion region(int(vp.x()), int(vp.y()), int(vp.width()), int(vp.height()), kTileSize);
+    if (_restrictToRegion)
+        region.addRenderBin(bin);
+    else
+        region.addAll();
+    const bool masked =
+        _restrictToRegion && region.getColumns() <= kMaskTiles && region.getRows() <= kMaskTiles;
+    if (masked)
+    {
+        unsigned char* d = _regionImage->data();
+        std::fill(d, d + kMaskTiles * kMaskTiles, 0);
+        const std::vector<std::uint8_t>& m = region.getMask();
+        for (int r = 0; r < region.getRows(); ++r)
+            std::copy(m.begin() + r * region.getColumns(), m.begin() + (r + 1) * region.getColumns(),
+                      d + r * kMaskTiles);
+        _regionImage->dirty();
+    }
+    _regionUniform->set(int(vp.x()), int(vp.y()), masked ? kTileSize : 0);
+    return region;
+}
+
+void OrderIndependentTransparency::forEachRectangle(osg::State& state, const RoutedRegion& region,
+                                                    const std::function<void()>& f)
+{
+    glEnable(GL_SCISSOR_TEST);
+    for (const RoutedRegion::Rect& r : region.rectangles())
+    {
+        glScissor(r.x, r.y, r.width, r.height);
+        f();
+    }
+    glDisable(GL_SCISSOR_TEST);
+    state.haveAppliedMode(GL_SCISSOR_TEST, osg::StateAttribute::OFF);
+    state.haveAppliedAttribute(osg::StateAttribute::SCISSOR);
+}
+
+void OrderIndependentTransparency::fillRegionStatistics(OITFrameStatistics& st,
+                                                        const RoutedRegion& region) const
+{
+    st.regionTiles = region.countTiles();
+    st.viewportTiles = region.getColumns() * region.getRows();
+    st.regionPixels = region.countPixels();
+}
+
+void OrderIndependentTransparency::setMaxFragmentsDefine(osg::StateSet* ss, int extra)
+{
+    _defineStateSets.emplace_back(ss, extra);
+    updateDefines();
+}
+
+void OrderIndependentTransparency::updateDefines()
+{
+    for (auto& d : _defineStateSets)
+    {
+        osg::ref_ptr<osg::StateSet> ss;
+        if (d.first.lock(ss))
+            ss->setDefine("LOA_MAX_FRAGMENTS", std::to_string(getMaxFragments() + d.second));
+    }
+}
+
+osg::ref_ptr<osg::Node> OrderIndependentTransparency::createResolveNode(float mergeEpsilon, unsigned unitA,
+                                                                        unsigned unitB, unsigned regionUnit)
+{
+    osg::ref_ptr<osg::Geometry> quad = detail::createFullScreenTriangle();
+    quad->setName(_camera->getName() + " resolve");
+    osg::StateSet* ss = quad->getOrCreateStateSet();
+    ss->setAttribute(
+        ShaderLibrary::createProgram(std::string("resolve ") + methodName(getMethod()),
+                                     {"loa_abuffer_fullscreen.vert.glsl", "loa_abuffer_resolve.frag.glsl",
+                                      getFetchShaderName(), "loa_abuffer_resolve_main.frag.glsl"})
+            .get());
+    addResolveState(ss, unitA, unitB);
+    addRegionState(ss, regionUnit);
+    setMaxFragmentsDefine(ss);
+    ss->addUniform(new osg::Uniform("loa_abufferMergeEpsilon", mergeEpsilon));
+    ss->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA), osg::StateAttribute::ON);
+    ss->setAttribute(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
+    ss->setMode(GL_DEPTH_TEST, osg::StateAttribute::OFF);
+    ss->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    ss->setRenderBinDetails(100, "RenderBin");
+    return quad;
+}
+
+osg::ref_ptr<osg::Program> OrderIndependentTransparency::createVertexColorProgram(const char* writeShaderName)
+{
+    osg::ref_ptr<osg::Program> p = ShaderLibrary::createProgram(
+        std::string("vertex colour ") + writeShaderName, {"loa_plain.vert.glsl", writeShaderName});
+    p->addShader(new osg::Shader(osg::Shader::FRAGMENT, "#version 450 compatibility\n"
+                                                        "in vec4 loa_color;\n"
+                                                        "void loa_abufferWrite(vec4 straightAlphaColor);\n"
+                                                        "void main() { loa_abufferWrite(loa_color); }\n"));
+    return p;
+}
+
+osg::ref_ptr<osg::Program> OrderIndependentTransparency::createVertexColorProgramForMethod() const
+{
+    return createVertexColorProgram(getWriteShaderName());
+}
+
+} // namespace osgLoA

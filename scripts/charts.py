@@ -1,0 +1,177 @@
+#!/usr/bin/python3
+"""Draws DIR/<case>.png from DIR/<case>.csv (loa-bench's results) with matplotlib.
+
+Per case: (top) grouped horizontal bars of each configuration's median frame time as a ratio to
+the case's baseline measured in the same run (one bar per size or group, the baseline's own bar
+at 1); (bottom, where the error column varies) frame time against error with the Pareto front
+(no other row both faster and more accurate) marked. transitions has its own baseline: the mean
+of the two homogeneous styles of the same scene, camera and size.
+Usage: scripts/charts.py [DIR] [CASE...]"""
+import csv
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter  # noqa: E402
+
+SIZE = re.compile(r"\b(\d+x\d+)\b")
+NOISE = re.compile(r"\s*\b(frame=\S+|passes=\S+|shared=\S+|fused=\S+|transition=\S+|abuffer_draws=\S+|"
+                   r"pingpong_draws=\S+|abuffer_passes=\S+|lost=\S+|\d+(\.\d+)? MiB|truncated)")
+
+
+def rows_of(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        r["ms"] = float(r["median_ms"])
+        try:
+            r["err"] = float(r["error_mean"]) if r["error_mean"] != "" else None
+        except ValueError:
+            r["err"] = None
+    return rows
+
+
+def key_of(params):
+    """The configuration without its size and per-frame counts: rows of one key differ by size."""
+    return " ".join(NOISE.sub("", SIZE.sub("", params)).split())
+
+
+def group_of(params):
+    m = SIZE.search(params)
+    return m.group(1) if m else "all"
+
+
+def baseline_ratios(name, rows):
+    """{(label, group): ratio} and a description of the baseline."""
+    ratios = {}
+    if name == "transitions":
+        views = {}
+        for r in rows:
+            p = r["parameters"]
+            get = lambda k, d="": (re.search(k + r"=(\S+)", p) or [None, d])[1]
+            view = (group_of(p), get("scene", "demo-city"), get("camera"))
+            views.setdefault(view, []).append((get("scenario"), get("fuse"), r["ms"]))
+        for (size, scene, camera), entries in views.items():
+            homog = [ms for sc, fz, ms in entries if sc.startswith("homogeneous-")]
+            if len(homog) < 2:
+                continue
+            h = sum(homog) / len(homog)
+            for sc, fz, ms in entries:
+                if sc.startswith("homogeneous-"):
+                    continue
+                label = "%s %s %s%s" % (scene, camera, sc, "" if not fz else " fuse=" + fz)
+                ratios[(label, size)] = ms / h
+        return ratios, "mean of homogeneous photorealistic and cartographic (same scene, camera, size, run)"
+    # Generic: the first row of each group (size) is the baseline.
+    first = {}
+    for r in rows:
+        g = group_of(r["parameters"])
+        first.setdefault(g, r)
+    for r in rows:
+        g = group_of(r["parameters"])
+        ratios[(key_of(r["parameters"]) or "(baseline)", g)] = r["ms"] / first[g]["ms"]
+    base = sorted(set(key_of(r["parameters"]) for r in first.values()))
+    return ratios, "first row of each size: " + "; ".join(b or "(baseline)" for b in base)
+
+
+def method_of(params):
+    m = re.match(r"(\w[\w-]*)=(\S+)", params)
+    if m and m.group(1) in ("method", "filter", "setup", "style", "scenario", "linkage", "samples", "mode"):
+        return m.group(2)
+    return key_of(params).split(" ")[0] if key_of(params) else "row"
+
+
+def pareto(points):
+    """Indices of the points no other point dominates (lower time and lower error)."""
+    front = []
+    for i, (t, e) in enumerate(points):
+        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for t2, e2 in points):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def draw(path, out):
+    rows = rows_of(path)
+    if not rows:
+        return False
+    name = os.path.basename(path)[:-4]
+    machine = rows[0]["machine"]
+    ratios, base = baseline_ratios(name, rows)
+    labels = list(dict.fromkeys(k[0] for k in ratios))
+    groups = list(dict.fromkeys(k[1] for k in ratios))
+    errs = [r for r in rows if r["err"] is not None]
+    scatter = len(set(r["err"] for r in errs)) > 1
+    height = max(3.0, 0.28 * len(labels) * max(1, min(len(groups), 3)) + 1.5)
+    fig, axes = plt.subplots(2 if scatter else 1, 1, figsize=(11, height + (5 if scatter else 0)),
+                             gridspec_kw={"height_ratios": [height, 5]} if scatter else None)
+    ax = axes[0] if scatter else axes
+    bar = 0.8 / max(1, len(groups))
+    for gi, g in enumerate(groups):
+        ys = [li + gi * bar for li, l in enumerate(labels) if (l, g) in ratios]
+        xs = [ratios[(l, g)] for l in labels if (l, g) in ratios]
+        ax.barh(ys, xs, height=bar, label=g)
+        for y, x in zip(ys, xs):
+            ax.text(x, y, " %.2f" % x, va="center", fontsize=7)
+    ax.set_yticks([li + bar * (len(groups) - 1) / 2 for li in range(len(labels))])
+    ax.set_yticklabels(labels, fontsize=8)
+    ax.invert_yaxis()
+    ax.axvline(1.0, color="black", lw=0.8)
+    if name == "transitions":
+        ax.axvline(1.5, color="black", ls="--", lw=0.8, label="goal 1.5x")
+    ax.set_xscale("log")
+    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_formatter(FormatStrFormatter("%g"))
+    ax.tick_params(axis="x", which="minor", labelsize=6)
+    ax.set_xlabel("median frame time / baseline (same run; log scale)")
+    ax.set_title("%s: ratio to the baseline\nbaseline: %s\n%s" % (name, base, machine), fontsize=9)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.grid(axis="x", which="both", alpha=0.3)
+    if scatter:
+        ax2 = axes[1]
+        methods = list(dict.fromkeys(method_of(r["parameters"]) for r in errs))
+        pts = [(r["ms"], r["err"]) for r in errs]
+        for m in methods:
+            sel = [(r["ms"], r["err"]) for r in errs if method_of(r["parameters"]) == m]
+            ax2.scatter([p[0] for p in sel], [p[1] for p in sel], s=22, label=m)
+        front = pareto(pts)
+        ax2.step([pts[i][0] for i in front], [pts[i][1] for i in front], where="post", color="black", lw=1,
+                 label="Pareto front")
+        ax2.set_xscale("log")
+        if min(p[1] for p in pts) > 0:
+            ax2.set_yscale("log")
+        else:
+            ax2.set_yscale("symlog", linthresh=0.01)
+        for a in (ax2.xaxis, ax2.yaxis):
+            a.set_major_formatter(FormatStrFormatter("%g"))
+        ax2.set_xlabel("median frame time (ms, log)")
+        ax2.set_ylabel("error_mean (see docs/bench/README.md)")
+        ax2.set_title("%s: speed against accuracy (every row)" % name, fontsize=9)
+        ax2.legend(fontsize=7, ncol=2)
+        ax2.grid(alpha=0.3, which="both")
+    with __import__("warnings").catch_warnings():
+        __import__("warnings").simplefilter("ignore")
+        fig.tight_layout()
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=90)
+    plt.close(fig)
+    os.replace(tmp, out)
+    return True
+
+
+def main():
+    d = sys.argv[1] if len(sys.argv) > 1 else "docs/bench"
+    only = set(sys.argv[2:])
+    for f in sorted(os.listdir(d)):
+        if not f.endswith(".csv") or (only and f[:-4] not in only):
+            continue
+        out = os.path.join(d, f[:-4] + ".png")
+        if draw(os.path.join(d, f), out):
+            print("charts: wrote " + out)
+
+
+if __name__ == "__main__":
+    main()
