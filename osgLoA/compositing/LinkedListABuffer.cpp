@@ -232,28 +232,13 @@ void LinkedListABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::RenderInf
     osg::State& state = *ri.getState();
     PerContext& pc = context(state.getContextID());
     if (!pc.initialised) initialise(pc);
-    if (previous)
-    {
-        osgUtil::StateGraph::moveToRootStateGraph(state, previous->_parent->_parent);
-        previous = nullptr;
-    }
-    if (!pc.usable) return;
-    const osgUtil::RenderStage* stage = bin.getStage();
-    const osg::Viewport* vp =
-        stage && stage->getViewport() ? stage->getViewport() : state.getCurrentViewport();
-    if (!vp || vp->width() <= 0 || vp->height() <= 0) return;
-    const int w = int(vp->x() + vp->width()), h = int(vp->y() + vp->height());
-    passViewport->setViewport(vp->x(), vp->y(), vp->width(), vp->height());
-    state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
-    bin.setStateSet(routing.get());
-
-    const RoutedRegion region = owner->updateRegion(bin, *vp);
-    OITFrameStatistics st;
-    owner->fillRegionStatistics(st, region);
-    st.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
-    st.width = w;
-    st.height = h;
-    const GLuint defaultFbo = state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
+    RoutedFrame frame;
+    if (!owner->beginRoutedFrame(bin, ri, previous, *passViewport, routing.get(), frame) || !pc.usable)
+        return;
+    const RoutedRegion& region = frame.region;
+    OITFrameStatistics& st = frame.stats;
+    const int w = frame.width, h = frame.height;
+    const GLuint defaultFbo = frame.defaultFbo;
     if (!region.isEmpty())
     {
         allocateHeads(pc, w, h);

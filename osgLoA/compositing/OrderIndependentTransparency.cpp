@@ -14,6 +14,7 @@
 #include <osg/Scissor>
 #include <osg/State>
 #include <osgUtil/RenderBin>
+#include <osgUtil/RenderStage>
 #include <osgUtil/StateGraph>
 
 #include <algorithm>
@@ -214,6 +215,37 @@ RoutedRegion OrderIndependentTransparency::updateRegion(const osgUtil::RenderBin
     }
     _regionUniform->set(int(vp.x()), int(vp.y()), masked ? kTileSize : 0);
     return region;
+}
+
+bool OrderIndependentTransparency::beginRoutedFrame(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
+                                                    osgUtil::RenderLeaf*& previous,
+                                                    osg::Viewport& passViewport, osg::StateSet* routing,
+                                                    RoutedFrame& frame)
+{
+    osg::State& state = *ri.getState();
+    if (previous)
+    {
+        osgUtil::StateGraph::moveToRootStateGraph(state, previous->_parent->_parent);
+        previous = nullptr;
+    }
+    // The stage's viewport (the camera's or the one it inherits), not osg::State's current one,
+    // which an earlier StateSet may have reset to osg::Viewport's default 800 x 600.
+    const osgUtil::RenderStage* stage = bin.getStage();
+    const osg::Viewport* vp =
+        stage && stage->getViewport() ? stage->getViewport() : state.getCurrentViewport();
+    if (!vp || vp->width() <= 0 || vp->height() <= 0) return false;
+    frame.width = int(vp->x() + vp->width());
+    frame.height = int(vp->y() + vp->height());
+    passViewport.setViewport(vp->x(), vp->y(), vp->width(), vp->height());
+    state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
+    if (routing) bin.setStateSet(routing);
+    frame.region = updateRegion(bin, *vp);
+    fillRegionStatistics(frame.stats, frame.region);
+    frame.stats.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
+    frame.stats.width = frame.width;
+    frame.stats.height = frame.height;
+    frame.defaultFbo = state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
+    return true;
 }
 
 void OrderIndependentTransparency::forEachRectangle(osg::State& state, const RoutedRegion& region,

@@ -246,12 +246,12 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
     const unsigned ctx = state.getContextID();
     PerContext& pc = context(ctx);
     if (!pc.initialised) initialise(pc);
-    if (previous)
+    if (!pc.usable)
     {
-        osgUtil::StateGraph::moveToRootStateGraph(state, previous->_parent->_parent);
-        previous = nullptr;
+        RoutedFrame none;
+        owner->beginRoutedFrame(bin, ri, previous, *passViewport, nullptr, none);
+        return;
     }
-    if (!pc.usable) return;
 
     const int requested = owner->_samples;
     const int n = clampSamples(requested, pc.caps);
@@ -266,35 +266,19 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
     const int maxPasses = std::max(1, std::min(owner->_maxPasses, stencilPassLimit(n)));
     const bool fullCoverage = owner->_coverage == FULL_COVERAGE ||
                               (owner->_coverage == AUTO_COVERAGE && !rasterCoverageByDefault(pc.caps));
-    bin.setStateSet(fullCoverage ? routingFull.get() : routingRaster.get());
-
-    // The stage's viewport: the camera's, or the one it inherits from the camera above it (set
-    // by the cull traversal on the render stage). osg::State's current viewport is not used: a
-    // state set applied earlier in the frame may have reset it to osg::Viewport's default
-    // 800 x 600. Every pass below draws with this one (passViewport), whatever its size and origin.
-    const osgUtil::RenderStage* stage = bin.getStage();
-    const osg::Viewport* vp =
-        stage && stage->getViewport() ? stage->getViewport() : state.getCurrentViewport();
-    const int w = vp ? int(vp->x() + vp->width()) : 0;
-    const int h = vp ? int(vp->y() + vp->height()) : 0;
-    if (w <= 0 || h <= 0 || vp->width() <= 0 || vp->height() <= 0) return;
-    passViewport->setViewport(vp->x(), vp->y(), vp->width(), vp->height());
-    // Same object, new values: make osg::State apply it again.
-    state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
-
-    // The tiles the routed draws touch: every full-screen pass below is scissored to them.
-    const RoutedRegion region = owner->updateRegion(bin, *vp);
-    OITFrameStatistics oit;
-    owner->fillRegionStatistics(oit, region);
-    oit.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
-    oit.width = w;
-    oit.height = h;
+    // Every pass below draws with the stage's viewport (passViewport), whatever its size and
+    // origin, scissored to the tiles the routed draws touch.
+    RoutedFrame frame;
+    if (!owner->beginRoutedFrame(bin, ri, previous, *passViewport,
+                                 fullCoverage ? routingFull.get() : routingRaster.get(), frame))
+        return;
+    const RoutedRegion& region = frame.region;
+    OITFrameStatistics& oit = frame.stats;
+    const int w = frame.width, h = frame.height;
     if (region.isEmpty())
     {
         // Nothing routed in view: no pass at all (the resolve's mask is empty too).
-        const GLuint defaultFbo =
-            state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
-        pc.gl.bindFramebuffer(GL_FRAMEBUFFER, defaultFbo);
+        pc.gl.bindFramebuffer(GL_FRAMEBUFFER, frame.defaultFbo);
         owner->_layersUniform->set(0);
         oit.bytes = ABufferMemory::of(pc.width, pc.height, pc.allocatedSamples, pc.layers).bytes();
         std::lock_guard<std::mutex> lock(mutex);
@@ -381,8 +365,7 @@ void StencilRoutedABuffer::Impl::drawPasses(osgUtil::RenderBin& bin, osg::Render
     pc.gl.sampleMaski(0, ~0u);
     state.haveAppliedAttribute(osg::StateAttribute::SAMPLEMASKI);
     state.apply();
-    const GLuint defaultFbo = state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
-    pc.gl.bindFramebuffer(GL_FRAMEBUFFER, defaultFbo);
+    pc.gl.bindFramebuffer(GL_FRAMEBUFFER, frame.defaultFbo);
     // Samplers bound before with the old names must be bound again.
     if (namesChanged) state.dirtyAllAttributes();
 

@@ -186,28 +186,13 @@ void WeightedBlendedOIT::drawRouted(osgUtil::RenderBin& bin, osg::RenderInfo& ri
     const unsigned ctx = state.getContextID();
     Impl::PerContext& pc = _impl->context(ctx);
     if (!pc.initialised) _impl->initialise(pc);
-    if (previous)
-    {
-        osgUtil::StateGraph::moveToRootStateGraph(state, previous->_parent->_parent);
-        previous = nullptr;
-    }
-    if (!pc.usable) return;
-    const osgUtil::RenderStage* stage = bin.getStage();
-    const osg::Viewport* vp =
-        stage && stage->getViewport() ? stage->getViewport() : state.getCurrentViewport();
-    if (!vp || vp->width() <= 0 || vp->height() <= 0) return;
-    const int w = int(vp->x() + vp->width()), h = int(vp->y() + vp->height());
-    _impl->passViewport->setViewport(vp->x(), vp->y(), vp->width(), vp->height());
-    state.haveAppliedAttribute(osg::StateAttribute::VIEWPORT);
-    bin.setStateSet(_impl->routing.get());
-
-    const RoutedRegion region = updateRegion(bin, *vp);
-    OITFrameStatistics st;
-    fillRegionStatistics(st, region);
-    st.frameNumber = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
-    st.width = w;
-    st.height = h;
-    const GLuint defaultFbo = state.getGraphicsContext() ? state.getGraphicsContext()->getDefaultFboId() : 0;
+    RoutedFrame frame;
+    if (!beginRoutedFrame(bin, ri, previous, *_impl->passViewport, _impl->routing.get(), frame) || !pc.usable)
+        return;
+    const RoutedRegion& region = frame.region;
+    OITFrameStatistics& st = frame.stats;
+    const int w = frame.width, h = frame.height;
+    const GLuint defaultFbo = frame.defaultFbo;
     if (!region.isEmpty())
     {
         const bool changed = pc.width != w || pc.height != h || !pc.accum;
