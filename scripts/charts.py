@@ -66,6 +66,26 @@ def baseline_ratios(name, rows):
                 label = "%s %s %s%s" % (scene, camera, sc, "" if not fz else " fuse=" + fz)
                 ratios[(label, size)] = ms / h
         return ratios, "mean of homogeneous photorealistic and cartographic (same scene, camera, size, run)"
+    if name == "abuffer":
+        # Per depth complexity K: each method against the default (stencil-routed, N=4, 4 passes)
+        # at the same K; the scatter uses these ratios too.
+        base = "method=stencil-routed N=4 max=4"
+        at = {}
+        for r in rows:
+            p = r["parameters"]
+            k = re.search(r"\bK=(\d+)", p).group(1)
+            label = " ".join(t for t in key_of(p).split() if not t.startswith("K="))
+            at.setdefault(k, {})[label] = r["ms"]
+            r["ratio"] = None
+            r["_k"], r["_label"] = k, label
+        for r in rows:
+            if base in at[r["_k"]]:
+                r["ratio"] = r["ms"] / at[r["_k"]][base]
+            shown = r["_label"].startswith("method=stencil-routed N=4") or not r["_label"].startswith(
+                "method=stencil-routed")
+            if shown and r["ratio"] is not None:
+                ratios[(r["_label"], "K=" + r["_k"])] = r["ratio"]
+        return ratios, base + " at the same K (depth complexity)"
     # Generic: the first row of each group (size) is the baseline.
     first = {}
     for r in rows:
@@ -133,9 +153,11 @@ def draw(path, out):
     if scatter:
         ax2 = axes[1]
         methods = list(dict.fromkeys(method_of(r["parameters"]) for r in errs))
-        pts = [(r["ms"], r["err"]) for r in errs]
+        normalised = all(r.get("ratio") is not None for r in errs)
+        x = (lambda r: r["ratio"]) if normalised else (lambda r: r["ms"])
+        pts = [(x(r), r["err"]) for r in errs]
         for m in methods:
-            sel = [(r["ms"], r["err"]) for r in errs if method_of(r["parameters"]) == m]
+            sel = [(x(r), r["err"]) for r in errs if method_of(r["parameters"]) == m]
             ax2.scatter([p[0] for p in sel], [p[1] for p in sel], s=22, label=m)
         front = pareto(pts)
         ax2.step([pts[i][0] for i in front], [pts[i][1] for i in front], where="post", color="black", lw=1,
@@ -144,10 +166,11 @@ def draw(path, out):
         if min(p[1] for p in pts) > 0:
             ax2.set_yscale("log")
         else:
-            ax2.set_yscale("symlog", linthresh=0.01)
+            ax2.set_yscale("symlog", linthresh=0.1)
+            ax2.set_ylim(bottom=0)
         for a in (ax2.xaxis, ax2.yaxis):
             a.set_major_formatter(FormatStrFormatter("%g"))
-        ax2.set_xlabel("median frame time (ms, log)")
+        ax2.set_xlabel("frame time / baseline at the same K (log)" if normalised else "median frame time (ms, log)")
         ax2.set_ylabel("error_mean (see docs/bench/README.md)")
         ax2.set_title("%s: speed against accuracy (every row)" % name, fontsize=9)
         ax2.legend(fontsize=7, ncol=2)

@@ -984,3 +984,135 @@ TEST(LoARenderFullFrameGLTest, AbstractStyleIsPreparedOncePerModelWithProgress)
     EXPECT_EQ(cached.abstractTextures, expected);
     EXPECT_EQ(cached.abstractFromCache, expected);
 }
+
+// ------------------------------------------------------------------------------------------
+// Issue 21 item 3: the order-independent transparency methods in the LoA pipeline. The frames of
+// the A-buffer path (fuse off, so every feature in transition is routed) with per-pixel linked
+// lists equal those of the stencil-routed A-buffer (one sample per pixel: both keep one fragment
+// per pixel centre) within the compositing bar, over the whole frame; weighted blended OIT is
+// measured (approximate by design) and must still draw every pixel the others draw; auto
+// selection tries the exact methods and keeps the cheaper one.
+namespace
+{
+osg::ref_ptr<osg::Image> frameWithOIT(const TestScene& scene, const std::string& scenario,
+                                      const std::string& camera, int width, int height, const Viewport* vp,
+                                      OrderIndependentTransparency::Method m)
+{
+    osg::ref_ptr<LoANode> loa = loaNode(scene.model.get(), ScenarioLibrary::createBuiltin(scenario).get());
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.fuseStyles = false;
+    rs.samples = 1;
+    rs.maxPasses = 16;
+    rs.oit = m;
+    loa->getRenderer()->setSettings(rs);
+    osg::ref_ptr<osg::Image> f =
+        renderFrame(loa.get(), scene, camera, width, height, vp, osg::Vec4(0.2f, 0.3f, 0.4f, 1));
+    EXPECT_EQ(loa->getRenderer()->getABuffer()->getMethod(), m);
+    EXPECT_GT(loa->getRenderer()->getStatistics().aBufferDraws, 0u) << scene.name << " " << scenario;
+    return f;
+}
+
+void expectMethodsAgree(const TestScene& scene, const std::string& scenario, const std::string& camera,
+                        int width, int height, const Viewport* vp = nullptr)
+{
+    using OIT = OrderIndependentTransparency;
+    const osg::ref_ptr<osg::Image> stencil =
+        frameWithOIT(scene, scenario, camera, width, height, vp, OIT::STENCIL_ROUTED);
+    const osg::ref_ptr<osg::Image> list =
+        frameWithOIT(scene, scenario, camera, width, height, vp, OIT::LINKED_LIST);
+    const osg::ref_ptr<osg::Image> weighted =
+        frameWithOIT(scene, scenario, camera, width, height, vp, OIT::WEIGHTED_BLENDED);
+    const std::string label = scene.name + " " + camera + " " + scenario + " " + std::to_string(width) + "x" +
+                              std::to_string(height) + (vp ? " (viewport offset)" : "");
+    const auto cmp = ImageComparison::compare(*list, *stencil, 16);
+    const EdgeSplit split = compareAwayFromEdges(*list, *stencil);
+    const double pixels = double(width) * height;
+    std::cout << "linked-list against stencil-routed, " << label << ": " << cmp.summary()
+              << "; away from edges " << split.failingAwayFromEdges << "\n";
+    EXPECT_TRUE(cmp.sizesMatch && cmp.meanDifference <= 1.0 && split.failingAwayFromEdges <= 0.0005 * pixels)
+        << label << ": " << cmp.summary();
+    // Weighted blended: nearly the same coverage (few pixels left at the clear colour where the
+    // exact frame has content), colours approximate.
+    const auto wcmp = ImageComparison::compare(*weighted, *stencil, 16);
+    int holes = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+        {
+            const unsigned char* s = stencil->data(x, y);
+            const unsigned char* w = weighted->data(x, y);
+            const bool sClear =
+                std::abs(s[0] - 51) <= 1 && std::abs(s[1] - 77) <= 1 && std::abs(s[2] - 102) <= 1;
+            const bool wClear =
+                std::abs(w[0] - 51) <= 1 && std::abs(w[1] - 77) <= 1 && std::abs(w[2] - 102) <= 1;
+            holes += !sClear && wClear;
+        }
+    std::cout << "weighted-blended against stencil-routed, " << label << ": " << wcmp.summary() << "; "
+              << holes << " pixels left at the clear colour\n";
+    // Measured: 82-286 such pixels (0.014 % of the frame at 1920x1080 to 0.10 % at 641x359), on
+    // building silhouettes against the sky, where the exact methods draw the building
+    // (docs/abuffer.md: not explained yet). Bar: 0.2 % of the frame. And it is further from the
+    // stencil-routed frame than the linked lists are (it is the approximate one).
+    EXPECT_LE(holes, int(0.002 * pixels)) << label;
+    EXPECT_GT(wcmp.meanDifference, cmp.meanDifference) << label;
+    if (width == 1920 || std::getenv("LOA_KEEP_FRAMES"))
+    {
+        const std::string file =
+            "oit-" + scene.name + "-" + camera + "-" + scenario + "-" + std::to_string(width);
+        keep(*stencil, file + "-stencil-routed");
+        keep(*list, file + "-linked-list");
+        keep(*weighted, file + "-weighted-blended");
+    }
+}
+} // namespace
+
+TEST(LoARenderFullFrameGLTest, OITMethodsAgreeOnTheDemoCity)
+{
+    const TestScene city = demoCity();
+    expectMethodsAgree(city, "distance", "street", 1920, 1080);
+    expectMethodsAgree(city, "view-angle", "oblique", 641, 359);
+    const Viewport vp{37, 21, 500, 300};
+    expectMethodsAgree(city, "route", "oblique", 577, 343, &vp);
+}
+
+TEST(LoARenderFullFrameGLTest, OITMethodsAgreeOnRealScenes)
+{
+    const std::vector<TestScene> scenes = realScenes();
+    if (scenes.empty()) GTEST_SKIP() << "no real test scene: run scripts/fetch-test-data";
+    for (const TestScene& scene : scenes)
+        expectMethodsAgree(scene, "distance", "oblique", 481, 271);
+}
+
+TEST(LoARenderFullFrameGLTest, AutoOITTriesTheExactMethodsAndKeepsTheCheaper)
+{
+    const std::vector<TestScene> scenes = realScenes();
+    const TestScene scene = scenes.empty() ? demoCity() : scenes.front();
+    osg::ref_ptr<LoANode> loa = loaNode(scene.model.get(), ScenarioLibrary::createBuiltin("distance").get());
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.fuseStyles = false;
+    rs.oitAuto = true;
+    loa->getRenderer()->setSettings(rs);
+    OffscreenRenderer::Settings s;
+    s.width = 320;
+    s.height = 180;
+    osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(s);
+    r->setSceneData(loa.get());
+    const Pose p = poseOf(scene, "oblique", 320.0 / 180.0);
+    r->setPerspective(p.fovy);
+    r->setViewMatrixAsLookAt(p.eye, p.center, p.up);
+    // Trials of 5 measured frames each, one dropped after every switch, results a frame late.
+    for (int i = 0; i < 30 && !loa->getRenderer()->getOITSelection().hasChosen(); ++i)
+        r->renderImage();
+    const OITAutoSelection& sel = loa->getRenderer()->getOITSelection();
+    ASSERT_TRUE(sel.hasChosen()) << scene.name;
+    ASSERT_EQ(sel.getMedians().size(), 2u);
+    EXPECT_GT(sel.getMedians()[0], 0.0);
+    EXPECT_GT(sel.getMedians()[1], 0.0);
+    const auto cheaper = sel.getMedians()[0] <= sel.getMedians()[1]
+                             ? OrderIndependentTransparency::STENCIL_ROUTED
+                             : OrderIndependentTransparency::LINKED_LIST;
+    r->renderImage();
+    EXPECT_EQ(loa->getRenderer()->getABuffer()->getMethod(), cheaper);
+    std::cout << scene.name << ": routed passes " << sel.getMedians()[0] << " ms stencil-routed, "
+              << sel.getMedians()[1] << " ms linked-list (median GPU time); kept "
+              << OrderIndependentTransparency::methodName(cheaper) << "\n";
+}

@@ -54,6 +54,7 @@ struct Options
     unsigned samplesABuffer = 4, passesABuffer = 4;
     bool fuseStyles = true;
     osgLoA::OrderIndependentTransparency::Method oit = osgLoA::OrderIndependentTransparency::STENCIL_ROUTED;
+    bool oitAuto = false;
     loa::CameraChoice camera;
     loa::RulesChoice rules;
     int width = loa::kDefaultWidth, height = loa::kDefaultHeight, samples = 0;
@@ -138,6 +139,8 @@ Options parse(int argc, char** argv)
            "--oit",
            [&o](const std::string& v)
            {
+               o.oitAuto = v == "auto";
+               if (o.oitAuto) return;
                try
                {
                    o.oit = osgLoA::OrderIndependentTransparency::methodFromName(v);
@@ -149,7 +152,9 @@ Options parse(int argc, char** argv)
            },
            "order-independent transparency of what fused styles cannot draw: stencil-routed (default, the "
            "paper's A-buffer), linked-list (per-pixel linked lists, exact, one pass) or weighted-blended "
-           "(one pass, approximate)")
+           "(one pass, approximate), or auto (the exact method whose routed passes measure cheaper, tried "
+           "over the first "
+           "frames that route; use --frames)")
         ->type_name("NAME");
     app.add_option_function<std::string>(
            "--program",
@@ -373,6 +378,7 @@ int run(const Options& o)
         rs.maxPasses = o.passesABuffer;
         rs.fuseStyles = o.fuseStyles;
         rs.oit = o.oit;
+        rs.oitAuto = o.oitAuto;
         loaNode->getRenderer()->setSettings(rs);
         osgLoA::StylePreparation::Options prep;
         prep.progress = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -450,6 +456,23 @@ int run(const Options& o)
                   << st.depthOnlyDraws << " in transition; " << st.aBufferDraws << " A-buffer draws, "
                   << st.pingPongDraws << " ping-pong draws; A-buffer " << (st.aBuffer ? "used" : "not needed")
                   << ", unsharp masking " << (st.unsharp ? "on" : "off") << "\n";
+        {
+            osgLoA::OrderIndependentTransparency* oit = loaNode->getRenderer()->getABuffer();
+            const osgLoA::OITFrameStatistics os = oit->getFrameStatistics();
+            std::cout << "order-independent transparency: "
+                      << osgLoA::OrderIndependentTransparency::methodName(oit->getMethod())
+                      << "; routed region " << os.regionTiles << " of " << os.viewportTiles << " tiles";
+            const osgLoA::OITAutoSelection& sel = loaNode->getRenderer()->getOITSelection();
+            if (o.oitAuto)
+            {
+                std::cout << "; auto: " << (sel.hasChosen() ? "chosen" : "still trying (more --frames)");
+                for (std::size_t i = 0; i < sel.getMedians().size(); ++i)
+                    if (sel.getMedians()[i] >= 0.0)
+                        std::cout << (i == 0 ? " stencil-routed " : " linked-list ") << sel.getMedians()[i]
+                                  << " ms";
+            }
+            std::cout << "\n";
+        }
         if (st.drawnFeatures == 0)
             std::cerr << "loa-render: warning: no feature of the scenario is in view ("
                       << loaNode->getFeatureIndex().size()

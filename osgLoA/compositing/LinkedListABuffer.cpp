@@ -156,6 +156,9 @@ struct LinkedListABuffer::Impl
             pc.gl.bindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, pc.counter);
         }
 
+        /** The A-buffer is gone: bind nothing (StateSets may keep this attribute longer). */
+        void detach() { _impl = nullptr; }
+
     private:
         Impl* _impl = nullptr;
     };
@@ -312,6 +315,7 @@ LinkedListABuffer::LinkedListABuffer(int maxFragments)
 LinkedListABuffer::~LinkedListABuffer()
 {
     releaseGLObjects(nullptr);
+    _impl->bindings->detach();
     delete _impl;
 }
 

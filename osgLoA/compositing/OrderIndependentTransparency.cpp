@@ -6,6 +6,7 @@
 #include <osgLoA/compositing/WeightedBlendedOIT>
 #include <osgLoA/render/ShaderLibrary>
 
+#include "ContextObjects.h"
 #include "RenderTarget.h"
 
 #include <osg/BlendFunc>
@@ -17,9 +18,14 @@
 #include <osgUtil/RenderStage>
 #include <osgUtil/StateGraph>
 
+#include <osg/GLExtensions>
+
 #include <algorithm>
 #include <atomic>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <type_traits>
 
 namespace osgLoA
 {
@@ -44,7 +50,7 @@ public:
     {
         osg::ref_ptr<OrderIndependentTransparency> owner;
         if (_owner.lock(owner))
-            owner->drawRouted(*this, ri, previous);
+            owner->drawRoutedTimed(*this, ri, previous);
         else
             osgUtil::RenderBin::drawImplementation(ri, previous);
     }
@@ -72,6 +78,100 @@ private:
     osg::observer_ptr<OrderIndependentTransparency> _owner;
 };
 } // namespace
+
+#ifndef GL_TIME_ELAPSED
+#define GL_TIME_ELAPSED 0x88BF
+#endif
+#ifndef GL_QUERY_RESULT
+#define GL_QUERY_RESULT 0x8866
+#endif
+#ifndef GL_QUERY_RESULT_AVAILABLE
+#define GL_QUERY_RESULT_AVAILABLE 0x8867
+#endif
+
+/** GL_TIME_ELAPSED queries around the routed passes, two per context (one in flight while the
+ *  previous frame's is read back without waiting). */
+struct OrderIndependentTransparency::Timer
+{
+    struct PerContext
+    {
+        bool initialised = false, usable = false;
+        GLuint queries[2] = {0, 0};
+        unsigned frames[2] = {0, 0};
+        bool pending[2] = {false, false};
+        int next = 0;
+        void(GL_APIENTRY* genQueries)(GLsizei, GLuint*) = nullptr;
+        void(GL_APIENTRY* beginQuery)(GLenum, GLuint) = nullptr;
+        void(GL_APIENTRY* endQuery)(GLenum) = nullptr;
+        void(GL_APIENTRY* getQueryObjectui64v)(GLuint, GLenum, GLuint64*) = nullptr;
+        void(GL_APIENTRY* getQueryObjectuiv)(GLuint, GLenum, GLuint*) = nullptr;
+    };
+    std::mutex mutex;
+    std::map<unsigned, PerContext> contexts;
+    double milliseconds = -1.0;
+    unsigned frame = 0;
+};
+
+void OrderIndependentTransparency::drawRoutedTimed(osgUtil::RenderBin& bin, osg::RenderInfo& ri,
+                                                   osgUtil::RenderLeaf*& previous)
+{
+    osg::State& state = *ri.getState();
+    Timer::PerContext* pc;
+    {
+        std::lock_guard<std::mutex> lock(_timer->mutex);
+        pc = &_timer->contexts[state.getContextID()];
+    }
+    if (!pc->initialised)
+    {
+        pc->initialised = true;
+        auto load = [](auto& f, const char* name)
+        {
+            f = reinterpret_cast<std::remove_reference_t<decltype(f)>>(osg::getGLExtensionFuncPtr(name));
+            return f != nullptr;
+        };
+        pc->usable = load(pc->genQueries, "glGenQueries") && load(pc->beginQuery, "glBeginQuery") &&
+                     load(pc->endQuery, "glEndQuery") &&
+                     load(pc->getQueryObjectui64v, "glGetQueryObjectui64v") &&
+                     load(pc->getQueryObjectuiv, "glGetQueryObjectuiv");
+        if (pc->usable) pc->genQueries(2, pc->queries);
+    }
+    if (!pc->usable)
+    {
+        drawRouted(bin, ri, previous);
+        return;
+    }
+    // Earlier frames' results, where they have come back.
+    for (int q = 0; q < 2; ++q)
+    {
+        if (!pc->pending[q]) continue;
+        GLuint available = 0;
+        pc->getQueryObjectuiv(pc->queries[q], GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available && q != pc->next) continue;
+        GLuint64 ns = 0;
+        pc->getQueryObjectui64v(pc->queries[q], GL_QUERY_RESULT, &ns); // waits only for the slot reused now
+        pc->pending[q] = false;
+        std::lock_guard<std::mutex> lock(_timer->mutex);
+        if (pc->frames[q] >= _timer->frame || _timer->milliseconds < 0.0)
+        {
+            _timer->milliseconds = double(ns) / 1e6;
+            _timer->frame = pc->frames[q];
+        }
+    }
+    const int q = pc->next;
+    pc->next = 1 - q;
+    pc->frames[q] = state.getFrameStamp() ? state.getFrameStamp()->getFrameNumber() : 0;
+    pc->beginQuery(GL_TIME_ELAPSED, pc->queries[q]);
+    drawRouted(bin, ri, previous);
+    pc->endQuery(GL_TIME_ELAPSED);
+    pc->pending[q] = true;
+}
+
+double OrderIndependentTransparency::getRoutedMilliseconds(unsigned* frameNumber) const
+{
+    std::lock_guard<std::mutex> lock(_timer->mutex);
+    if (frameNumber) *frameNumber = _timer->frame;
+    return _timer->milliseconds;
+}
 
 const char* OrderIndependentTransparency::methodName(Method m)
 {
@@ -120,6 +220,7 @@ osg::ref_ptr<OrderIndependentTransparency> OrderIndependentTransparency::create(
 }
 
 OrderIndependentTransparency::OrderIndependentTransparency(const std::string& name, int renderBinNumber)
+    : _timer(new Timer)
 {
     _binName = "loa_oit_" + std::to_string(g_instances.fetch_add(1));
     _camera = new osg::Camera;
@@ -161,6 +262,10 @@ OrderIndependentTransparency::OrderIndependentTransparency(const std::string& na
 OrderIndependentTransparency::~OrderIndependentTransparency()
 {
     osgUtil::RenderBin::removeRenderBinPrototype(_binPrototype.get());
+    for (auto& entry : _timer->contexts)
+        for (GLuint q : entry.second.queries)
+            detail::scheduleDeletion(detail::GL_NAME_QUERY, entry.first, q);
+    delete _timer;
 }
 
 void OrderIndependentTransparency::drawLeaves(osgUtil::RenderBin& bin, osg::RenderInfo& ri,

@@ -321,8 +321,11 @@ TransitionRenderer::~TransitionRenderer()
     removeCallbacks();
 }
 
-void TransitionRenderer::setSettings(const Settings& s)
+void TransitionRenderer::setSettings(const Settings& settings)
 {
+    Settings s = settings;
+    if (s.oitAuto && !_settings.oitAuto) _oitSelection = OITAutoSelection();
+    if (s.oitAuto) s.oit = _oitSelection.current();
     if (s.samples == 0)
         throw std::invalid_argument("TransitionRenderer: the A-buffer needs at least 1 sample");
     if (s.maxPasses == 0)
@@ -903,13 +906,32 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
 {
     _stats = Statistics();
     _draws.clear();
+    const osg::Viewport* vp = cv.getViewport();
+    const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;
+    if (_settings.oitAuto)
+    {
+        // The routed passes' GPU time of an earlier frame, once per frame measured: the method
+        // for this frame (switching rebuilds the A-buffer and relinks the routed programs).
+        unsigned measured = 0;
+        const double ms = _aBuffer->getRoutedMilliseconds(&measured);
+        if (ms >= 0.0 && measured != _oitMeasuredFrame)
+        {
+            _oitMeasuredFrame = measured;
+            const OrderIndependentTransparency::Method m = _oitSelection.record(ms, w, h);
+            if (m != _settings.oit)
+            {
+                Settings next = _settings;
+                next.oit = m;
+                setSettings(next);
+                _oitMeasuredFrame = ~0u;
+            }
+        }
+    }
     const osg::Matrixd mv = *cv.getModelViewMatrix();
     _viewToSceneMatrix = osg::Matrixd::inverse(mv);
     decide(evaluator);
     _stats.fusedPrograms = unsigned(_fusedMasks.size());
 
-    const osg::Viewport* vp = cv.getViewport();
-    const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;
     osg::BoundingSphere bs = _node.getBound();
     osg::BoundingSphere viewSphere(bs.center() * mv,
                                    bs.radius() * float(mv.getScale().length() / std::sqrt(3.0)));
