@@ -177,6 +177,22 @@ TEST(LoaPluginTest, ScenarioOptionPicksALibraryScenario)
         << "the city options reached the city reader";
 }
 
+TEST(LoaPluginTest, OitOptionSelectsTheOrderIndependentTransparency)
+{
+    using OIT = osgLoA::OrderIndependentTransparency;
+    for (const char* name : {"stencil-routed", "linked-list", "weighted-blended"})
+    {
+        osg::ref_ptr<osgLoA::LoANode> loa = readLoa("demo.loacity.loa", std::string("oit=") + name + " " + kCity);
+        ASSERT_TRUE(loa.valid()) << name;
+        EXPECT_EQ(loa->getRenderer()->getSettings().oit, OIT::methodFromName(name));
+        EXPECT_STREQ(OIT::methodName(loa->getRenderer()->getABuffer()->getMethod()), name);
+        EXPECT_FALSE(loa->getRenderer()->getSettings().oitAuto);
+    }
+    osg::ref_ptr<osgLoA::LoANode> autoLoa = readLoa("demo.loacity.loa", "oit=auto " + kCity);
+    ASSERT_TRUE(autoLoa.valid());
+    EXPECT_TRUE(autoLoa->getRenderer()->getSettings().oitAuto);
+}
+
 TEST(LoaPluginTest, EveryLibraryScenarioLoadsWithoutWarnings)
 {
     // The default city: it holds the blueprint scenario's focus object (its central tower).
@@ -254,6 +270,11 @@ TEST(LoaPluginTest, ErrorsNameTheProblem)
     invalid->setName("empty");
     osgLoA::ScenarioLibrary::writeFile(*invalid, dir + "/empty.osgt");
     const Case cases[] = {
+        {"unknown OIT method",
+         "demo.loacity.loa",
+         "oit=depth-peeling " + kCity,
+         ReadResult::ERROR_IN_READING_FILE,
+         {"oit", "depth-peeling", "linked-list", "auto"}},
         {"unknown scenario name",
          "demo.loacity.loa",
          "scenario=no-such-scenario " + kCity,

@@ -15,6 +15,7 @@
 #include <osg/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -46,12 +47,13 @@ std::vector<Layer> layersOf(int k)
     return layers;
 }
 
-osg::ref_ptr<osg::Geometry> quad(const Layer& l)
+/** A quad over [-extent, extent]^2 of the view (1: all of it). */
+osg::ref_ptr<osg::Geometry> quad(const Layer& l, float extent = 1.0f)
 {
     osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
     osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
     for (const osg::Vec2& c : {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)})
-        v->push_back(osg::Vec3(c.x(), c.y(), -l.distance));
+        v->push_back(osg::Vec3(c.x() * extent, c.y() * extent, -l.distance));
     g->setVertexArray(v.get());
     osg::ref_ptr<osg::Vec4Array> c = new osg::Vec4Array;
     c->push_back(l.color);
@@ -60,8 +62,9 @@ osg::ref_ptr<osg::Geometry> quad(const Layer& l)
     return g;
 }
 
-/** The reference: every pixel holds the same K fragments (full-view quads). */
-osg::ref_ptr<osg::Image> referenceImage(const std::vector<Layer>& layers, int w, int h)
+/** The reference: every pixel of the central [-extent, extent]^2 of the view holds the same K
+ *  fragments, the others none. */
+osg::ref_ptr<osg::Image> referenceImage(const std::vector<Layer>& layers, int w, int h, float extent = 1.0f)
 {
     osgLoA::ReferenceCompositor::FragmentList f;
     for (const Layer& l : layers)
@@ -74,11 +77,17 @@ osg::ref_ptr<osg::Image> referenceImage(const std::vector<Layer>& layers, int w,
     osgLoA::ReferenceCompositor::FragmentImage one(1, 1);
     one.at(0, 0) = f;
     const osg::ref_ptr<osg::Image> px = osgLoA::ReferenceCompositor().compositeImage(one, kBackground);
+    const osg::ref_ptr<osg::Image> bg =
+        osgLoA::ReferenceCompositor().compositeImage(osgLoA::ReferenceCompositor::FragmentImage(1, 1), kBackground);
     osg::ref_ptr<osg::Image> img = new osg::Image;
     img->allocateImage(w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            std::copy(px->data(0, 0), px->data(0, 0) + 4, img->data(x, y));
+        {
+            const double cx = (x + 0.5) / w * 2.0 - 1.0, cy = (y + 0.5) / h * 2.0 - 1.0;
+            const bool in = std::abs(cx) <= extent && std::abs(cy) <= extent;
+            std::copy((in ? px : bg)->data(0, 0), (in ? px : bg)->data(0, 0) + 4, img->data(x, y));
+        }
     return img;
 }
 } // namespace
@@ -146,6 +155,36 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer)
             std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
                       << row.errorMean << "/255, max " << row.errorMax << "/255\n";
         }
+        // The routed region (issue 21 item 2): 4 layers over the central sixteenth of the view,
+        // passes restricted to the tiles they touch, then over the whole viewport.
+        if (cfg.method == OIT::STENCIL_ROUTED && (cfg.n != 4 || cfg.maxPasses != 4)) continue;
+        const std::vector<Layer> layers = layersOf(4);
+        osg::Group* g = ab->getRoutedGroup();
+        g->removeChildren(0, g->getNumChildren());
+        for (const Layer& l : layers)
+            g->addChild(quad(l, 0.25f).get());
+        for (bool restrict : {true, false})
+        {
+            ab->setRestrictToRoutedRegion(restrict);
+            Row row;
+            row.times = r->timeFrames(frames);
+            const osgLoA::OITFrameStatistics st = ab->getFrameStatistics();
+            const auto cmp =
+                osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h, 0.25f), 1);
+            std::ostringstream p, m, x;
+            p << "method=" << OIT::methodName(cfg.method) << (cfg.method == OIT::STENCIL_ROUTED ? " N=4 max=4" : "")
+              << " K=4 region=" << (restrict ? "tiles" : "viewport") << " sixteenth-of-view " << w << "x" << h
+              << " tiles=" << st.regionTiles << "/" << st.viewportTiles;
+            m << std::setprecision(4) << cmp.meanDifference;
+            x << cmp.maxDifference;
+            row.parameters = p.str();
+            row.errorMean = m.str();
+            row.errorMax = x.str();
+            rows.push_back(row);
+            std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
+                      << row.errorMean << "/255\n";
+        }
+        ab->setRestrictToRoutedRegion(true);
     }
     return rows;
 }

@@ -45,7 +45,7 @@
 
 namespace
 {
-const char* const kOwnKeys[] = {"scenario", "rules", "rules-only"};
+const char* const kOwnKeys[] = {"scenario", "rules", "rules-only", "oit"};
 const char* const kFileKeys[] = {"models", "scenario", "rules", "options", "description"};
 
 /** A read failure with the ReadResult status it becomes at the plugin boundary. */
@@ -142,6 +142,7 @@ struct LoaOptions
 {
     std::string scenario;   ///< "" when not given
     std::string rules;      ///< "" when not given
+    std::string oit;        ///< "" when not given: the renderer's default (stencil-routed)
     bool rulesOnly = false; ///< rules-only=FILE: FILE's rules instead of the built-in ones
     std::vector<std::string> passOn;
 
@@ -160,7 +161,25 @@ struct LoaOptions
                                "option '" + token + "' needs a value (" + key + "=...)"};
             else
             {
-                (key == "scenario" ? o.scenario : o.rules) = token.substr(key.size() + 1);
+                const std::string value = token.substr(key.size() + 1);
+                if (key == "oit")
+                {
+                    if (value != "auto")
+                    {
+                        try
+                        {
+                            osgLoA::OrderIndependentTransparency::methodFromName(value);
+                        }
+                        catch (const std::invalid_argument& e)
+                        {
+                            throw LoaError{osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE,
+                                           std::string("option oit: ") + e.what() + " or auto"};
+                        }
+                    }
+                    o.oit = value;
+                    continue;
+                }
+                (key == "scenario" ? o.scenario : o.rules) = value;
                 if (key != "scenario") o.rulesOnly = key == "rules-only";
             }
         }
@@ -448,6 +467,8 @@ public:
         supportsOption("rules=FILE",
                        "classification rule set (.osgt/.osgb/.osgx) tried before the built-in rules");
         supportsOption("rules-only=FILE", "classification rule set used instead of the built-in rules");
+        supportsOption("oit=NAME", "order-independent transparency of what fused styles cannot draw: "
+                                   "stencil-routed (default), linked-list, weighted-blended or auto");
         osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA level-of-abstraction pseudo-loader"; }
@@ -564,6 +585,13 @@ private:
                          << std::endl;
         }
         loa->setScenario(scenario.get());
+        if (!opts.oit.empty())
+        {
+            osgLoA::TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+            rs.oitAuto = opts.oit == "auto";
+            if (!rs.oitAuto) rs.oit = osgLoA::OrderIndependentTransparency::methodFromName(opts.oit);
+            loa->getRenderer()->setSettings(rs);
+        }
         return loa;
     }
 };
