@@ -77,8 +77,8 @@ osg::ref_ptr<osg::Image> referenceImage(const std::vector<Layer>& layers, int w,
     osgLoA::ReferenceCompositor::FragmentImage one(1, 1);
     one.at(0, 0) = f;
     const osg::ref_ptr<osg::Image> px = osgLoA::ReferenceCompositor().compositeImage(one, kBackground);
-    const osg::ref_ptr<osg::Image> bg =
-        osgLoA::ReferenceCompositor().compositeImage(osgLoA::ReferenceCompositor::FragmentImage(1, 1), kBackground);
+    const osg::ref_ptr<osg::Image> bg = osgLoA::ReferenceCompositor().compositeImage(
+        osgLoA::ReferenceCompositor::FragmentImage(1, 1), kBackground);
     osg::ref_ptr<osg::Image> img = new osg::Image;
     img->allocateImage(w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE);
     for (int y = 0; y < h; ++y)
@@ -119,6 +119,22 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer)
             if (n <= maxSamples) configs.push_back({OIT::STENCIL_ROUTED, n, maxPasses});
     configs.push_back({OIT::LINKED_LIST, 4, 4});
     configs.push_back({OIT::WEIGHTED_BLENDED, 1, 1});
+    // Times the scene, compares its frame with the reference and adds the row.
+    auto measure = [&](const std::string& parameters, const osg::Image& reference)
+    {
+        Row row;
+        row.times = r->timeFrames(frames);
+        const auto cmp = osgLoA::ImageComparison::compare(*r->renderImage(), reference, 1);
+        std::ostringstream m, x;
+        m << std::setprecision(4) << cmp.meanDifference;
+        x << cmp.maxDifference;
+        row.parameters = parameters;
+        row.errorMean = m.str();
+        row.errorMax = x.str();
+        rows.push_back(row);
+        std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
+                  << row.errorMean << "/255, max " << row.errorMax << "/255\n";
+    };
     for (const Config& cfg : configs)
     {
         // One instance per configuration: its storage grows only to what its rows need.
@@ -135,25 +151,17 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer)
             g->removeChildren(0, g->getNumChildren());
             for (const Layer& l : layers)
                 g->addChild(quad(l).get());
-            Row row;
-            row.times = r->timeFrames(frames);
+            // The statistics are those of the frame before the parameters are written: the
+            // warm-up and timed frames have drawn the same scene.
+            r->renderImage();
             const osgLoA::OITFrameStatistics st = ab->getFrameStatistics();
-            const auto cmp =
-                osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h), 1);
-            std::ostringstream p, m, x;
+            std::ostringstream p;
             p << "method=" << OIT::methodName(cfg.method);
             if (cfg.method == OIT::STENCIL_ROUTED) p << " N=" << cfg.n << " max=" << cfg.maxPasses;
             p << " K=" << k << " passes=" << st.geometryPasses << " " << w << "x" << h
               << (st.truncated ? " truncated" : "") << " " << std::fixed << std::setprecision(1)
               << double(st.bytes) / 1048576.0 << " MiB";
-            m << std::setprecision(4) << cmp.meanDifference;
-            x << cmp.maxDifference;
-            row.parameters = p.str();
-            row.errorMean = m.str();
-            row.errorMax = x.str();
-            rows.push_back(row);
-            std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
-                      << row.errorMean << "/255, max " << row.errorMax << "/255\n";
+            measure(p.str(), *referenceImage(layers, w, h));
         }
         // The routed region (issue 21 item 2): 4 layers over the central sixteenth of the view,
         // passes restricted to the tiles they touch, then over the whole viewport.
@@ -166,23 +174,14 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer)
         for (bool restrict : {true, false})
         {
             ab->setRestrictToRoutedRegion(restrict);
-            Row row;
-            row.times = r->timeFrames(frames);
+            r->renderImage();
             const osgLoA::OITFrameStatistics st = ab->getFrameStatistics();
-            const auto cmp =
-                osgLoA::ImageComparison::compare(*r->renderImage(), *referenceImage(layers, w, h, 0.25f), 1);
-            std::ostringstream p, m, x;
-            p << "method=" << OIT::methodName(cfg.method) << (cfg.method == OIT::STENCIL_ROUTED ? " N=4 max=4" : "")
+            std::ostringstream p;
+            p << "method=" << OIT::methodName(cfg.method)
+              << (cfg.method == OIT::STENCIL_ROUTED ? " N=4 max=4" : "")
               << " K=4 region=" << (restrict ? "tiles" : "viewport") << " sixteenth-of-view " << w << "x" << h
               << " tiles=" << st.regionTiles << "/" << st.viewportTiles;
-            m << std::setprecision(4) << cmp.meanDifference;
-            x << cmp.maxDifference;
-            row.parameters = p.str();
-            row.errorMean = m.str();
-            row.errorMax = x.str();
-            rows.push_back(row);
-            std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms, mean error "
-                      << row.errorMean << "/255\n";
+            measure(p.str(), *referenceImage(layers, w, h, 0.25f));
         }
         ab->setRestrictToRoutedRegion(true);
     }
