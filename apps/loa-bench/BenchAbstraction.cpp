@@ -98,7 +98,8 @@ std::vector<Row> abstraction(unsigned frames, std::string& renderer)
             const std::string problem = checkBlocks(*previous, *regularFrame);
             row.frameFailed = !problem.empty();
             if (sz[0] == 1280 || row.frameFailed)
-                keepFrame(*previous, "abstraction-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) + "-" + style);
+                keepFrame(*previous,
+                          "abstraction-" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]) + "-" + style);
             if (node && !node->getLastError().empty())
                 throw std::runtime_error("abstraction style '" + style + "': " + node->getLastError());
             std::ostringstream p;

@@ -21,8 +21,9 @@ struct Row
 };
 
 /** Checks a benchmark's last frame against a reference frame of the same view (plain rendering):
- *  the covered area (pixels not of the clear colour) and the black pixels may differ by at most
- *  0.2 % of the frame. Returns "" when the frame passes, else what is wrong. */
+ *  the covered area (pixels not of the clear colour) may differ by at most 0.2 % of the frame,
+ *  and at most 0.2 % may be black (< 4/255) where the reference is not dark (< 32/255). Returns ""
+ *  when the frame passes, else what is wrong. */
 std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clearColor);
 
 /** The check for frames whose colours a style changes on purpose (abstraction, filtering,

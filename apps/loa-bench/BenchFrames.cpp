@@ -24,22 +24,26 @@ std::string checkFrame(const osg::Image& frame, const osg::Image& reference, con
     auto isClear = [&](const unsigned char* p)
     { return std::abs(p[0] - cr) <= 1 && std::abs(p[1] - cg) <= 1 && std::abs(p[2] - cb) <= 1; };
     auto isBlack = [](const unsigned char* p) { return p[0] < 4 && p[1] < 4 && p[2] < 4; };
-    long long covered[2] = {0, 0}, black[2] = {0, 0};
+    // Black only counts where the reference is not dark itself: a style may darken a surface that
+    // is nearly black already (depth unsharp masking in the window recesses of a back-lit facade,
+    // opencity-block's street view), which is not a wrong frame.
+    auto isDark = [](const unsigned char* p) { return p[0] < 32 && p[1] < 32 && p[2] < 32; };
+    long long covered[2] = {0, 0}, blackOnContent = 0;
     const osg::Image* images[2] = {&frame, &reference};
-    for (int i = 0; i < 2; ++i)
-        for (int y = 0; y < frame.t(); ++y)
-            for (int x = 0; x < frame.s(); ++x)
-            {
-                const unsigned char* p = images[i]->data(x, y);
-                covered[i] += isClear(p) ? 0 : 1;
-                black[i] += isBlack(p) ? 1 : 0;
-            }
+    for (int y = 0; y < frame.t(); ++y)
+        for (int x = 0; x < frame.s(); ++x)
+        {
+            for (int i = 0; i < 2; ++i)
+                covered[i] += isClear(images[i]->data(x, y)) ? 0 : 1;
+            blackOnContent += isBlack(frame.data(x, y)) && !isDark(reference.data(x, y)) ? 1 : 0;
+        }
     const double bar = 0.002 * double(frame.s()) * frame.t();
     std::ostringstream why;
     if (double(std::llabs(covered[0] - covered[1])) > bar)
-        why << "covered " << covered[0] << " px against plain rendering's " << covered[1];
-    if (double(black[0] - black[1]) > bar)
-        why << (why.str().empty() ? "" : "; ") << black[0] << " black px against " << black[1];
+        why << "covered " << covered[0] << " px against the reference's " << covered[1];
+    if (double(blackOnContent) > bar)
+        why << (why.str().empty() ? "" : "; ") << blackOnContent
+            << " black px where the reference is not dark";
     return why.str();
 }
 

@@ -16,11 +16,11 @@
 // error_mean: the weighted mean Delta E; error_max: for clustering rows, the number of colours.
 #include "BenchCase.h"
 
-#include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/palette/KMeansPalette>
 #include <osgLoA/palette/PaletteHierarchy>
 #include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/palette/TextureHistogram>
+#include <osgLoA/styles/FixedFunctionUniforms>
 
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
