@@ -35,9 +35,19 @@ def rows_of(path):
     return rows
 
 
+MEASURED = re.compile(r"^[\w-]*(ms|fps|mib|texels|bytes|draws|passes|tiles|lost|frame)(_\w+)?=|^[\w-]+=-?\d+\.\d+$",
+                      re.IGNORECASE)
+
+
 def key_of(params):
-    """The configuration without its size and per-frame counts: rows of one key differ by size."""
-    return " ".join(NOISE.sub("", SIZE.sub("", params)).split())
+    """The configuration without its size and what was measured (times, counts, sizes in MiB,
+    decimal values): rows of one key differ by size."""
+    tokens = NOISE.sub("", SIZE.sub("", params)).split()
+    return " ".join(t for t in tokens if not MEASURED.search(t))
+
+
+def short(text, n=70):
+    return text if len(text) <= n else text[: n - 1] + "…"
 
 
 def group_of(params):
@@ -137,7 +147,7 @@ def draw(path, out):
         for y, x in zip(ys, xs):
             ax.text(x, y, " %.2f" % x, va="center", fontsize=7)
     ax.set_yticks([li + bar * (len(groups) - 1) / 2 for li in range(len(labels))])
-    ax.set_yticklabels(labels, fontsize=8)
+    ax.set_yticklabels([short(l) for l in labels], fontsize=8)
     ax.invert_yaxis()
     ax.axvline(1.0, color="black", lw=0.8)
     if name == "transitions":
@@ -147,7 +157,7 @@ def draw(path, out):
     ax.xaxis.set_minor_formatter(FormatStrFormatter("%g"))
     ax.tick_params(axis="x", which="minor", labelsize=6)
     ax.set_xlabel("median frame time / baseline (same run; log scale)")
-    ax.set_title("%s: ratio to the baseline\nbaseline: %s\n%s" % (name, base, machine), fontsize=9)
+    ax.set_title("%s: ratio to the baseline\nbaseline: %s\n%s" % (name, short(base, 90), machine), fontsize=9)
     ax.legend(fontsize=8, loc="lower right")
     ax.grid(axis="x", which="both", alpha=0.3)
     if scatter:
