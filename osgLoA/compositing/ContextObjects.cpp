@@ -1,9 +1,11 @@
 // Deferred deletion of the GL names the order-independent transparency methods create.
 #include "ContextObjects.h"
 
+#include <osgLoA/render/GLCapabilities>
+
 #include <osg/ContextData>
-#include <osg/GLExtensions>
 #include <osg/GLObjects>
+#include <osg/Notify>
 
 namespace osgLoA
 {
@@ -21,7 +23,6 @@ public:
     }
     void deleteGLObject(GLuint name) override
     {
-        using Delete = void(GL_APIENTRY*)(GLsizei, const GLuint*);
         if (Kind == GL_NAME_TEXTURE)
         {
             glDeleteTextures(1, &name);
@@ -30,10 +31,23 @@ public:
         const char* entry = Kind == GL_NAME_FRAMEBUFFER ? "glDeleteFramebuffers"
                             : Kind == GL_NAME_QUERY     ? "glDeleteQueries"
                                                         : "glDeleteBuffers";
-        if (const Delete f = reinterpret_cast<Delete>(osg::getGLExtensionFuncPtr(entry))) f(1, &name);
+        void(GL_APIENTRY * f)(GLsizei, const GLuint*) = nullptr;
+        if (loadGLFunction(f, entry)) f(1, &name);
     }
 };
 } // namespace
+
+bool usableWithGL45(const char* who, const char* needs, bool loaded, bool& warned)
+{
+    GLCapabilities caps;
+    caps.query();
+    const bool usable = caps.versionAtLeast(4, 5) && loaded;
+    if (!usable && !warned)
+        OSG_WARN << "osgLoA::" << who << ": the context (" << caps.summary() << ") lacks GL 4.5 (" << needs
+                 << "); nothing is routed" << std::endl;
+    warned = warned || !usable;
+    return usable;
+}
 
 void scheduleDeletion(GLNameKind kind, unsigned ctx, GLuint name)
 {

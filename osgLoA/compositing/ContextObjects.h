@@ -6,6 +6,7 @@
 #define OSGLOA_COMPOSITING_CONTEXTOBJECTS_H 1
 
 #include <osg/GL>
+#include <osg/GLExtensions>
 #include <osg/State>
 #include <osg/Texture>
 
@@ -69,6 +70,18 @@ enum GLNameKind
     GL_NAME_QUERY,
     GL_NAME_BUFFER
 };
+
+/** Loads a GL entry point of the current context into f; false where the driver lacks it. */
+template <typename F> bool loadGLFunction(F& f, const char* name)
+{
+    f = reinterpret_cast<F>(osg::getGLExtensionFuncPtr(name));
+    return f != nullptr;
+}
+
+/** Whether the current context offers GL 4.5 and loaded holds (every entry point a method needs
+ *  was found); the first time it does not, one OSG_WARN names who, the context and what is
+ *  missing (warned remembers it). */
+bool usableWithGL45(const char* who, const char* needs, bool loaded, bool& warned);
 
 /** Deletes the name in context ctx at its next osg::flushDeletedGLObjects (any thread). */
 void scheduleDeletion(GLNameKind kind, unsigned ctx, GLuint name);

@@ -1,14 +1,12 @@
 // LinkedListABuffer: per-pixel linked lists of fragments (Yang et al. 2010) built in one geometry
 // pass with atomics; storage grown to the fragments of the frame (docs/abuffer.md).
 #include <osgLoA/compositing/LinkedListABuffer>
-#include <osgLoA/render/GLCapabilities>
 
 #include "ContextObjects.h"
 
 #include <osg/ColorMask>
 #include <osg/Depth>
 #include <osg/GL>
-#include <osg/GLExtensions>
 #include <osg/Notify>
 #include <osg/State>
 #include <osg/Stencil>
@@ -88,31 +86,26 @@ struct GLFunctions
     void(GL_APIENTRY* bindFramebuffer)(GLenum, GLuint) = nullptr;
     void(GL_APIENTRY* deleteFramebuffers)(GLsizei, const GLuint*) = nullptr;
 
-    template <typename F> static bool load(F& f, const char* name)
-    {
-        f = reinterpret_cast<F>(osg::getGLExtensionFuncPtr(name));
-        return f != nullptr;
-    }
     bool loadAll()
     {
         bool ok = true;
-        ok &= load(createTextures, "glCreateTextures");
-        ok &= load(textureStorage2D, "glTextureStorage2D");
-        ok &= load(clearTexSubImage, "glClearTexSubImage");
-        ok &= load(createBuffers, "glCreateBuffers");
-        ok &= load(namedBufferData, "glNamedBufferData");
-        ok &= load(namedBufferSubData, "glNamedBufferSubData");
-        ok &= load(getNamedBufferSubData, "glGetNamedBufferSubData");
-        ok &= load(deleteBuffers, "glDeleteBuffers");
-        ok &= load(bindBufferBase, "glBindBufferBase");
-        ok &= load(bindImageTexture, "glBindImageTexture");
-        ok &= load(memoryBarrier, "glMemoryBarrier");
-        ok &= load(createFramebuffers, "glCreateFramebuffers");
-        ok &= load(namedFramebufferParameteri, "glNamedFramebufferParameteri");
-        ok &= load(namedFramebufferDrawBuffer, "glNamedFramebufferDrawBuffer");
-        ok &= load(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
-        ok &= load(bindFramebuffer, "glBindFramebuffer");
-        ok &= load(deleteFramebuffers, "glDeleteFramebuffers");
+        ok &= detail::loadGLFunction(createTextures, "glCreateTextures");
+        ok &= detail::loadGLFunction(textureStorage2D, "glTextureStorage2D");
+        ok &= detail::loadGLFunction(clearTexSubImage, "glClearTexSubImage");
+        ok &= detail::loadGLFunction(createBuffers, "glCreateBuffers");
+        ok &= detail::loadGLFunction(namedBufferData, "glNamedBufferData");
+        ok &= detail::loadGLFunction(namedBufferSubData, "glNamedBufferSubData");
+        ok &= detail::loadGLFunction(getNamedBufferSubData, "glGetNamedBufferSubData");
+        ok &= detail::loadGLFunction(deleteBuffers, "glDeleteBuffers");
+        ok &= detail::loadGLFunction(bindBufferBase, "glBindBufferBase");
+        ok &= detail::loadGLFunction(bindImageTexture, "glBindImageTexture");
+        ok &= detail::loadGLFunction(memoryBarrier, "glMemoryBarrier");
+        ok &= detail::loadGLFunction(createFramebuffers, "glCreateFramebuffers");
+        ok &= detail::loadGLFunction(namedFramebufferParameteri, "glNamedFramebufferParameteri");
+        ok &= detail::loadGLFunction(namedFramebufferDrawBuffer, "glNamedFramebufferDrawBuffer");
+        ok &= detail::loadGLFunction(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
+        ok &= detail::loadGLFunction(bindFramebuffer, "glBindFramebuffer");
+        ok &= detail::loadGLFunction(deleteFramebuffers, "glDeleteFramebuffers");
         return ok;
     }
 };
@@ -182,19 +175,11 @@ struct LinkedListABuffer::Impl
     void initialise(PerContext& pc)
     {
         pc.initialised = true;
-        GLCapabilities caps;
-        caps.query();
-        pc.usable = caps.versionAtLeast(4, 5) && pc.gl.loadAll();
-        if (!pc.usable)
-        {
-            if (!warned)
-                OSG_WARN << "osgLoA::LinkedListABuffer: the context (" << caps.summary()
-                         << ") lacks GL 4.5 (image load/store, shader storage buffers, direct state "
-                            "access, framebuffers without attachments); nothing is routed"
-                         << std::endl;
-            warned = true;
-            return;
-        }
+        pc.usable = detail::usableWithGL45("LinkedListABuffer",
+                                           "image load/store, shader storage buffers, direct state access, "
+                                           "framebuffers without attachments",
+                                           pc.gl.loadAll(), warned);
+        if (!pc.usable) return;
         pc.gl.createFramebuffers(1, &pc.fbo);
         pc.gl.namedFramebufferDrawBuffer(pc.fbo, GL_NONE);
         pc.gl.createBuffers(1, &pc.counter);

@@ -25,7 +25,6 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
-#include <type_traits>
 
 namespace osgLoA
 {
@@ -310,13 +309,24 @@ RoutedRegion OrderIndependentTransparency::updateRegion(const osgUtil::RenderBin
         _restrictToRegion && region.getColumns() <= kMaskTiles && region.getRows() <= kMaskTiles;
     if (masked)
     {
+        // Uploaded again only when the tiles changed (a still camera keeps the same mask).
         unsigned char* d = _regionImage->data();
-        std::fill(d, d + kMaskTiles * kMaskTiles, 0);
         const std::vector<std::uint8_t>& m = region.getMask();
-        for (int r = 0; r < region.getRows(); ++r)
-            std::copy(m.begin() + r * region.getColumns(), m.begin() + (r + 1) * region.getColumns(),
-                      d + r * kMaskTiles);
-        _regionImage->dirty();
+        const int cols = region.getColumns();
+        bool changed = false;
+        for (int r = 0; r < kMaskTiles && !changed; ++r)
+            for (int c = 0; c < kMaskTiles && !changed; ++c)
+            {
+                const std::uint8_t want = r < region.getRows() && c < cols ? m[std::size_t(r * cols + c)] : 0;
+                changed = d[r * kMaskTiles + c] != want;
+            }
+        if (changed)
+        {
+            std::fill(d, d + kMaskTiles * kMaskTiles, 0);
+            for (int r = 0; r < region.getRows(); ++r)
+                std::copy(m.begin() + r * cols, m.begin() + (r + 1) * cols, d + r * kMaskTiles);
+            _regionImage->dirty();
+        }
     }
     _regionUniform->set(int(vp.x()), int(vp.y()), masked ? kTileSize : 0);
     return region;

@@ -30,6 +30,7 @@ void RoutedRegion::addWindowBox(double x0, double y0, double x1, double y1)
     const int r0 = std::max(0, int(std::floor(ly0 / _tile)));
     const int c1 = std::min(_cols - 1, int(std::floor((std::min(lx1, double(_width)) - 1e-9) / _tile)));
     const int r1 = std::min(_rows - 1, int(std::floor((std::min(ly1, double(_height)) - 1e-9) / _tile)));
+    _rectanglesValid = false;
     for (int r = r0; r <= r1; ++r)
         std::fill(_mask.begin() + r * _cols + c0, _mask.begin() + r * _cols + c1 + 1, std::uint8_t(255));
 }
@@ -64,6 +65,7 @@ void RoutedRegion::addBox(const osg::BoundingBox& box, const osg::Matrix& modelV
 
 void RoutedRegion::addAll()
 {
+    _rectanglesValid = false;
     std::fill(_mask.begin(), _mask.end(), std::uint8_t(255));
 }
 
@@ -101,9 +103,11 @@ std::uint64_t RoutedRegion::countPixels() const
     return n;
 }
 
-std::vector<RoutedRegion::Rect> RoutedRegion::rectangles() const
+const std::vector<RoutedRegion::Rect>& RoutedRegion::rectangles() const
 {
-    std::vector<Rect> out;
+    if (_rectanglesValid) return _rectangles;
+    std::vector<Rect>& out = _rectangles;
+    out.clear();
     std::vector<std::size_t> open; // rectangles ending at the row below, by index into out
     for (int r = 0; r < _rows; ++r)
     {
@@ -142,6 +146,7 @@ std::vector<RoutedRegion::Rect> RoutedRegion::rectangles() const
         }
         open.swap(next);
     }
+    _rectanglesValid = true;
     return out;
 }
 

@@ -93,32 +93,26 @@ struct GLFunctions
     void(GL_APIENTRY* getQueryObjectuiv)(GLuint, GLenum, GLuint*) = nullptr;
     void(GL_APIENTRY* sampleMaski)(GLuint, GLbitfield) = nullptr;
 
-    template <typename F> static bool load(F& f, const char* name)
-    {
-        f = reinterpret_cast<F>(osg::getGLExtensionFuncPtr(name));
-        return f != nullptr;
-    }
-
     /** Loads every entry point; false when one is missing. Call with the context current. */
     bool loadAll()
     {
         bool ok = true;
-        ok &= load(createTextures, "glCreateTextures");
-        ok &= load(textureStorage3DMultisample, "glTextureStorage3DMultisample");
-        ok &= load(textureParameteri, "glTextureParameteri");
-        ok &= load(getTextureLevelParameteriv, "glGetTextureLevelParameteriv");
-        ok &= load(createFramebuffers, "glCreateFramebuffers");
-        ok &= load(namedFramebufferTextureLayer, "glNamedFramebufferTextureLayer");
-        ok &= load(namedFramebufferDrawBuffer, "glNamedFramebufferDrawBuffer");
-        ok &= load(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
-        ok &= load(bindFramebuffer, "glBindFramebuffer");
-        ok &= load(deleteFramebuffers, "glDeleteFramebuffers");
-        ok &= load(createQueries, "glCreateQueries");
-        ok &= load(deleteQueries, "glDeleteQueries");
-        ok &= load(beginQuery, "glBeginQuery");
-        ok &= load(endQuery, "glEndQuery");
-        ok &= load(getQueryObjectuiv, "glGetQueryObjectuiv");
-        ok &= load(sampleMaski, "glSampleMaski");
+        ok &= detail::loadGLFunction(createTextures, "glCreateTextures");
+        ok &= detail::loadGLFunction(textureStorage3DMultisample, "glTextureStorage3DMultisample");
+        ok &= detail::loadGLFunction(textureParameteri, "glTextureParameteri");
+        ok &= detail::loadGLFunction(getTextureLevelParameteriv, "glGetTextureLevelParameteriv");
+        ok &= detail::loadGLFunction(createFramebuffers, "glCreateFramebuffers");
+        ok &= detail::loadGLFunction(namedFramebufferTextureLayer, "glNamedFramebufferTextureLayer");
+        ok &= detail::loadGLFunction(namedFramebufferDrawBuffer, "glNamedFramebufferDrawBuffer");
+        ok &= detail::loadGLFunction(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
+        ok &= detail::loadGLFunction(bindFramebuffer, "glBindFramebuffer");
+        ok &= detail::loadGLFunction(deleteFramebuffers, "glDeleteFramebuffers");
+        ok &= detail::loadGLFunction(createQueries, "glCreateQueries");
+        ok &= detail::loadGLFunction(deleteQueries, "glDeleteQueries");
+        ok &= detail::loadGLFunction(beginQuery, "glBeginQuery");
+        ok &= detail::loadGLFunction(endQuery, "glEndQuery");
+        ok &= detail::loadGLFunction(getQueryObjectuiv, "glGetQueryObjectuiv");
+        ok &= detail::loadGLFunction(sampleMaski, "glSampleMaski");
         return ok;
     }
 };

@@ -1,7 +1,6 @@
 // WeightedBlendedOIT: McGuire & Bavoil 2013, one additive pass into two float targets
 // (docs/abuffer.md).
 #include <osgLoA/compositing/WeightedBlendedOIT>
-#include <osgLoA/render/GLCapabilities>
 
 #include "ContextObjects.h"
 
@@ -9,7 +8,6 @@
 #include <osg/BlendFunc>
 #include <osg/ColorMask>
 #include <osg/Depth>
-#include <osg/GLExtensions>
 #include <osg/Notify>
 #include <osgUtil/RenderBin>
 #include <osgUtil/RenderStage>
@@ -57,23 +55,18 @@ struct GLFunctions
     void(GL_APIENTRY* clearBufferfv)(GLenum, GLint, const GLfloat*) = nullptr;
     void(GL_APIENTRY* deleteFramebuffers)(GLsizei, const GLuint*) = nullptr;
 
-    template <typename F> static bool load(F& f, const char* name)
-    {
-        f = reinterpret_cast<F>(osg::getGLExtensionFuncPtr(name));
-        return f != nullptr;
-    }
     bool loadAll()
     {
         bool ok = true;
-        ok &= load(createTextures, "glCreateTextures");
-        ok &= load(textureStorage2D, "glTextureStorage2D");
-        ok &= load(createFramebuffers, "glCreateFramebuffers");
-        ok &= load(namedFramebufferTexture, "glNamedFramebufferTexture");
-        ok &= load(namedFramebufferDrawBuffers, "glNamedFramebufferDrawBuffers");
-        ok &= load(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
-        ok &= load(bindFramebuffer, "glBindFramebuffer");
-        ok &= load(clearBufferfv, "glClearBufferfv");
-        ok &= load(deleteFramebuffers, "glDeleteFramebuffers");
+        ok &= detail::loadGLFunction(createTextures, "glCreateTextures");
+        ok &= detail::loadGLFunction(textureStorage2D, "glTextureStorage2D");
+        ok &= detail::loadGLFunction(createFramebuffers, "glCreateFramebuffers");
+        ok &= detail::loadGLFunction(namedFramebufferTexture, "glNamedFramebufferTexture");
+        ok &= detail::loadGLFunction(namedFramebufferDrawBuffers, "glNamedFramebufferDrawBuffers");
+        ok &= detail::loadGLFunction(checkNamedFramebufferStatus, "glCheckNamedFramebufferStatus");
+        ok &= detail::loadGLFunction(bindFramebuffer, "glBindFramebuffer");
+        ok &= detail::loadGLFunction(clearBufferfv, "glClearBufferfv");
+        ok &= detail::loadGLFunction(deleteFramebuffers, "glDeleteFramebuffers");
         return ok;
     }
 };
@@ -106,17 +99,9 @@ struct WeightedBlendedOIT::Impl
     void initialise(PerContext& pc)
     {
         pc.initialised = true;
-        GLCapabilities caps;
-        caps.query();
-        pc.usable = caps.versionAtLeast(4, 5) && pc.gl.loadAll();
-        if (!pc.usable)
-        {
-            if (!warned)
-                OSG_WARN << "osgLoA::WeightedBlendedOIT: the context (" << caps.summary()
-                         << ") lacks GL 4.5 direct state access; nothing is routed" << std::endl;
-            warned = true;
-            return;
-        }
+        pc.usable =
+            detail::usableWithGL45("WeightedBlendedOIT", "direct state access", pc.gl.loadAll(), warned);
+        if (!pc.usable) return;
         pc.gl.createFramebuffers(1, &pc.fbo);
         const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT0 + 1};
         pc.gl.namedFramebufferDrawBuffers(pc.fbo, 2, buffers);
