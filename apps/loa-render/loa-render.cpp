@@ -147,7 +147,7 @@ Options parse(int argc, char** argv)
                }
                catch (const std::invalid_argument& e)
                {
-                   throw loa::UsageError(std::string("--oit: ") + e.what());
+                   throw loa::UsageError(std::string("--oit: ") + e.what() + ", or auto");
                }
            },
            "order-independent transparency of what fused styles cannot draw: stencil-routed (default, the "
