@@ -91,6 +91,20 @@ osg::ref_ptr<OffscreenRenderer> renderer(int w, int h, osg::Node* scene, const o
     return r;
 }
 
+/** 64x64 over black, straight down on the ground plane z = 0, x and y in -12..12. */
+osg::ref_ptr<osg::Image> renderFromAbove(osg::Node* scene)
+{
+    OffscreenRenderer::Settings s;
+    s.width = 64;
+    s.height = 64;
+    s.clearColor = osg::Vec4(0, 0, 0, 1);
+    osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(s);
+    r->setSceneData(scene);
+    r->getCamera()->setProjectionMatrixAsOrtho(-12, 12, -12, 12, 1, 100);
+    r->getCamera()->setViewMatrixAsLookAt(osg::Vec3d(0, 0, 50), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
+    return r->renderImage();
+}
+
 unsigned count(const std::vector<TransitionRenderer::Draw>& draws, unsigned id,
                TransitionRenderer::Draw::Kind kind, int configuration)
 {
@@ -442,15 +456,7 @@ TEST(TransitionRendererGLTest, StylesKeepTheShapeOfAlphaBlendedCutOuts)
         rs.unsharpMasking = false;
         loa->getRenderer()->setSettings(rs);
         // Straight down on the quad, which fills the middle of the frame.
-        OffscreenRenderer::Settings s;
-        s.width = 64;
-        s.height = 64;
-        s.clearColor = osg::Vec4(0, 0, 0, 1);
-        osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(s);
-        r->setSceneData(loa.get());
-        r->getCamera()->setProjectionMatrixAsOrtho(-12, 12, -12, 12, 1, 100);
-        r->getCamera()->setViewMatrixAsLookAt(osg::Vec3d(0, 0, 50), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
-        osg::ref_ptr<osg::Image> img = r->renderImage();
+        osg::ref_ptr<osg::Image> img = renderFromAbove(loa.get());
         EXPECT_GT(loa->getRenderer()->getStatistics().aBufferDraws, 0u) << style; // blended: the A-buffer
         long long leftCovered = 0, rightCovered = 0;
         for (int y = 12; y < 52; ++y)
@@ -464,6 +470,69 @@ TEST(TransitionRendererGLTest, StylesKeepTheShapeOfAlphaBlendedCutOuts)
         EXPECT_EQ(leftCovered, 0) << style << ": the transparent half was drawn";
         EXPECT_GT(rightCovered, 700) << style << ": the opaque half is missing";
     }
+}
+
+// The ping-pong buffer serves forests of opaque materials only (paper 004 §4.4: it "only resolves
+// this issue if features are rendered opaquely"); its pass keeps one fragment per pixel and
+// alpha-tests at 0.5. A forest whose material blends goes through the A-buffer with its alpha.
+// Two forest quads side by side, in transition between two styles (weights 0.5 and 0.5), over
+// black: the opaque one is drawn in the ping-pong buffer, the one of alpha 0.3 in the A-buffer and
+// shows at about 0.3 of the opaque one's brightness. (Before, the ping-pong pass took both and cut
+// the translucent quad away: opencity-block's alpha-blended tree fringes were lost, 0.47 % of the
+// street view.)
+TEST(TransitionRendererGLTest, ForestsOfBlendedMaterialsGoThroughTheABufferNotThePingPongBuffer)
+{
+    osg::ref_ptr<UsageScenario> s = new UsageScenario;
+    s->setName("forests");
+    const TransitionConfiguration::FeatureTypes types = {FeatureType::Green};
+    s->addConfiguration(config("photorealistic", BlendFunction(0.0f, 1.0f, 1.0f, 1.0f), types,
+                               new M(M::FEATURE_INTEREST, 0, 0)));
+    s->addConfiguration(config("cartographic", BlendFunction(0.0f, 0.0f, 0.0f, 1.0f), types,
+                               new M(M::FEATURE_INTEREST, 0, 0)));
+    osg::ref_ptr<LoANode> loa = new LoANode;
+    loa->setScenario(s.get());
+    for (int i = 0; i < 2; ++i)
+    {
+        osg::ref_ptr<osg::Node> quad = groundFeature(unsigned(i + 1), FeatureType::Green, 4.5f, 0.5f);
+        Feature::get(*quad)->setSubType("deciduous");
+        osg::Geometry* g = quad->asGroup()->getChild(0)->asGeometry();
+        osg::Vec3Array* v = static_cast<osg::Vec3Array*>(g->getVertexArray());
+        for (osg::Vec3& p : *v)
+            p.x() += i == 0 ? -5.5f : 5.5f;
+        if (i == 1)
+        {
+            (*static_cast<osg::Vec4Array*>(g->getColorArray()))[0].a() = 0.3f;
+            g->getOrCreateStateSet()->setMode(GL_BLEND, osg::StateAttribute::ON);
+            g->getOrCreateStateSet()->setRenderingHint(osg::StateSet::TRANSPARENT_BIN);
+        }
+        loa->addChild(quad.get());
+    }
+    TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
+    rs.fuseStyles = false; // else the opaque forest is fused and no ping-pong pass is drawn
+    rs.edges = false;
+    rs.unsharpMasking = false;
+    loa->getRenderer()->setSettings(rs);
+    loa->getRenderer()->setRecordDraws(true);
+    osg::ref_ptr<osg::Image> img = renderFromAbove(loa.get());
+    typedef TransitionRenderer::Draw D;
+    const auto& draws = loa->getRenderer()->getDraws();
+    EXPECT_EQ(count(draws, 1, D::PING_PONG, 0) + count(draws, 1, D::PING_PONG, 1), 2u);
+    EXPECT_EQ(count(draws, 2, D::PING_PONG, 0) + count(draws, 2, D::PING_PONG, 1), 0u);
+    EXPECT_EQ(count(draws, 2, D::A_BUFFER, 0) + count(draws, 2, D::A_BUFFER, 1), 2u);
+    EXPECT_TRUE(loa->getRenderer()->getStatistics().pingPongBuffer);
+    // Mean brightness of the middle of each quad (x 8..24 and 40..56 of 64, y 16..48).
+    auto brightness = [&](int x0)
+    {
+        double sum = 0.0;
+        for (int y = 16; y < 48; ++y)
+            for (int x = x0; x < x0 + 16; ++x)
+                for (int c = 0; c < 3; ++c)
+                    sum += img->data(x, y)[c];
+        return sum / (16.0 * 32.0 * 3.0);
+    };
+    const double opaque = brightness(8), translucent = brightness(40);
+    ASSERT_GT(opaque, 40.0);
+    EXPECT_NEAR(translucent / opaque, 0.3, 0.06) << opaque << " " << translucent;
 }
 
 // Two styles of one surface with weights 0.5 and 0.5 compose to the mean of the two styles'

@@ -20,10 +20,12 @@ struct Row
     bool frameFailed = false;
 };
 
-/** Checks a benchmark's last frame against a reference frame of the same view (plain rendering):
- *  the covered area (pixels not of the clear colour) may differ by at most 0.2 % of the frame,
- *  and at most 0.2 % may be black (< 4/255) where the reference is not dark (< 32/255). Returns ""
- *  when the frame passes, else what is wrong. */
+/** Checks a benchmark's last frame against a reference frame of the same view (plain rendering).
+ *  Covered pixels are those not of the clear colour (more than 1/255 off in a channel). At most
+ *  0.2 % of the frame may be covered in the reference with no covered pixel within one pixel in
+ *  the frame (content missing), as many the other way round (drawn over the background), and as
+ *  many black (< 4/255) where the reference is not dark (< 32/255). Returns "" when the frame
+ *  passes, else what is wrong. */
 std::string checkFrame(const osg::Image& frame, const osg::Image& reference, const osg::Vec4& clearColor);
 
 /** The check for frames whose colours a style changes on purpose (abstraction, filtering,

@@ -587,7 +587,12 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         _featureState[i] = ss;
         if (osg::Node* node = e.node.get()) _opaqueMaterial[i] = inspectMaterial(*node) ? 1 : 0;
         const auto& subs = _settings.pingPongSubTypes;
-        _routedToPingPong[i] = _settings.pingPong && e.feature->getType() == FeatureType::Green &&
+        // The ping-pong buffer keeps one opaque fragment per pixel: it serves forests of opaque
+        // materials only (paper 004 §4.4: it "only resolves this issue if features are rendered
+        // opaquely"). Alpha-blended tree cards go to the order-independent transparency with their
+        // alpha, else the ping-pong pass's alpha test cuts their fringes.
+        _routedToPingPong[i] = _settings.pingPong && _opaqueMaterial[i] &&
+                               e.feature->getType() == FeatureType::Green &&
                                std::find(subs.begin(), subs.end(), e.feature->getSubType()) != subs.end();
     }
     // Ping-pong targets alternate over the configurations that forests match.
