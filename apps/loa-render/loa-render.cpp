@@ -55,6 +55,7 @@ struct Options
     bool fuseStyles = true;
     osgLoA::OrderIndependentTransparency::Method oit = osgLoA::OrderIndependentTransparency::STENCIL_ROUTED;
     bool oitAuto = false;
+    bool oitGiven = false; ///< --oit named a method: stencil-routed is then used even where approximate
     loa::CameraChoice camera;
     loa::RulesChoice rules;
     int width = loa::kDefaultWidth, height = loa::kDefaultHeight, samples = 0;
@@ -141,6 +142,7 @@ Options parse(int argc, char** argv)
            {
                o.oitAuto = v == "auto";
                if (o.oitAuto) return;
+               o.oitGiven = true;
                try
                {
                    o.oit = osgLoA::OrderIndependentTransparency::methodFromName(v);
@@ -151,10 +153,10 @@ Options parse(int argc, char** argv)
                }
            },
            "order-independent transparency of what fused styles cannot draw: stencil-routed (default, the "
-           "paper's A-buffer), linked-list (per-pixel linked lists, exact, one pass) or weighted-blended "
-           "(one pass, approximate), or auto (the exact method whose routed passes measure cheaper, tried "
-           "over the first "
-           "frames that route; use --frames)")
+           "paper's A-buffer; without this option, on renderers where its routing is approximate at "
+           "silhouettes (llvmpipe) the linked lists draw instead), linked-list (per-pixel linked lists, "
+           "exact, one pass) or weighted-blended (one pass, approximate), or auto (the exact method whose "
+           "routed passes measure cheaper, tried over the first frames that route; use --frames)")
         ->type_name("NAME");
     app.add_option_function<std::string>(
            "--program",
@@ -379,6 +381,7 @@ int run(const Options& o)
         rs.fuseStyles = o.fuseStyles;
         rs.oit = o.oit;
         rs.oitAuto = o.oitAuto;
+        rs.approximateStencilRouting = o.oitGiven;
         loaNode->getRenderer()->setSettings(rs);
         osgLoA::StylePreparation::Options prep;
         prep.progress = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -468,8 +471,9 @@ int run(const Options& o)
                 std::cout << "; auto: " << (sel.hasChosen() ? "chosen" : "still trying (more --frames)");
                 for (std::size_t i = 0; i < sel.getMedians().size(); ++i)
                     if (sel.getMedians()[i] >= 0.0)
-                        std::cout << (i == 0 ? " stencil-routed " : " linked-list ") << sel.getMedians()[i]
-                                  << " ms";
+                        std::cout << " "
+                                  << osgLoA::OrderIndependentTransparency::methodName(sel.getCandidates()[i])
+                                  << " " << sel.getMedians()[i] << " ms";
             }
             std::cout << "\n";
         }
@@ -480,14 +484,25 @@ int run(const Options& o)
         auto* stencil = dynamic_cast<osgLoA::StencilRoutedABuffer*>(loaNode->getRenderer()->getABuffer());
         const osgLoA::ABufferFrameStatistics ab =
             stencil ? stencil->getLastFrameStatistics() : osgLoA::ABufferFrameStatistics();
-        const auto mem = osgLoA::TransitionRenderer::memory(
+        auto mem = osgLoA::TransitionRenderer::memory(
             o.width, o.height, unsigned(std::max(ab.samples, 1)), unsigned(std::max(ab.memory.layers, 1)),
             st.pingPongBuffer, st.unsharp, loaNode->getRenderer()->getUnsharpSigma());
+        std::ostringstream aBufferShape;
+        if (stencil)
+            aBufferShape << " with N=" << std::max(ab.samples, 1) << " x " << std::max(ab.memory.layers, 1)
+                         << " layer(s)";
+        else
+        {
+            // The other methods report what they allocated (linked lists: grown to the frame).
+            mem.aBufferBytes = double(loaNode->getRenderer()->getABuffer()->getFrameStatistics().bytes);
+            aBufferShape << ", "
+                         << osgLoA::OrderIndependentTransparency::methodName(
+                                loaNode->getRenderer()->getABuffer()->getMethod());
+        }
         std::cout << std::setprecision(1) << "GPU memory of the LoA passes: " << mem.totalBytes() / 1048576.0
-                  << " MiB (A-buffer " << mem.aBufferBytes / 1048576.0
-                  << " with N=" << std::max(ab.samples, 1) << " x " << std::max(ab.memory.layers, 1)
-                  << " layer(s), G-buffer " << mem.geometryBufferBytes / 1048576.0 << ", ping-pong "
-                  << mem.pingPongBytes / 1048576.0 << ", unsharp mask " << mem.unsharpBytes / 1048576.0
+                  << " MiB (A-buffer " << mem.aBufferBytes / 1048576.0 << aBufferShape.str() << ", G-buffer "
+                  << mem.geometryBufferBytes / 1048576.0 << ", ping-pong " << mem.pingPongBytes / 1048576.0
+                  << ", unsharp mask " << mem.unsharpBytes / 1048576.0
                   << "); paper 004 formula W H (2N+7)/262144: " << mem.paperBytes / 1048576.0 << " MB\n";
     }
     if (abstractionNode)

@@ -484,11 +484,15 @@ int StencilRoutedABuffer::getMaxFragments() const
 
 bool StencilRoutedABuffer::rasterCoverageByDefault(const GLCapabilities& caps)
 {
+    return rasterCoverageByDefault(caps.renderer);
+}
+
+bool StencilRoutedABuffer::rasterCoverageByDefault(const std::string& renderer)
+{
     // Measured (docs/abuffer.md): Mesa's llvmpipe writes colour and depth of a fragment drawn
     // with GL_MULTISAMPLE disabled into sample 0 only, so full-coverage routing keeps one fragment
     // per layer there. softpipe shares the gallium rasterizer state handling.
-    return caps.renderer.find("llvmpipe") != std::string::npos ||
-           caps.renderer.find("softpipe") != std::string::npos;
+    return renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
 }
 
 void StencilRoutedABuffer::setRoutingCoverage(RoutingCoverage coverage)

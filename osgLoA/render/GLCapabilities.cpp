@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <mutex>
 #include <sstream>
 
 namespace osgLoA
@@ -28,7 +29,25 @@ int glInt(GLenum name)
     return v;
 }
 
+std::mutex& lastRendererMutex()
+{
+    static std::mutex m;
+    return m;
+}
+
+std::string& lastRenderer()
+{
+    static std::string r;
+    return r;
+}
+
 } // namespace
+
+std::string GLCapabilities::lastQueriedRenderer()
+{
+    std::lock_guard<std::mutex> lock(lastRendererMutex());
+    return lastRenderer();
+}
 
 void GLCapabilities::query()
 {
@@ -37,6 +56,10 @@ void GLCapabilities::query()
     }
     vendor = glString(GL_VENDOR);
     renderer = glString(GL_RENDERER);
+    {
+        std::lock_guard<std::mutex> lock(lastRendererMutex());
+        lastRenderer() = renderer;
+    }
     version = glString(GL_VERSION);
     glslVersion = glString(GL_SHADING_LANGUAGE_VERSION);
     majorVersion = glInt(GL_MAJOR_VERSION);

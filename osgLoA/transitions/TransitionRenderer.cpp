@@ -2,6 +2,8 @@
 // compositing passes around it.
 #include <osgLoA/transitions/TransitionRenderer>
 
+#include <osgLoA/compositing/StencilRoutedABuffer>
+#include <osgLoA/render/GLCapabilities>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyle>
@@ -321,10 +323,27 @@ TransitionRenderer::~TransitionRenderer()
     removeCallbacks();
 }
 
+OrderIndependentTransparency::Method TransitionRenderer::methodInUse(const Settings& s)
+{
+    // (With one sample the raster coverage is the pixel centre's: exact.)
+    if (s.oit == OrderIndependentTransparency::STENCIL_ROUTED && !s.approximateStencilRouting &&
+        s.samples > 1 && StencilRoutedABuffer::rasterCoverageByDefault(GLCapabilities::lastQueriedRenderer()))
+        return OrderIndependentTransparency::LINKED_LIST;
+    return s.oit;
+}
+
 void TransitionRenderer::setSettings(const Settings& settings)
 {
     Settings s = settings;
-    if (s.oitAuto && !_settings.oitAuto) _oitSelection = OITAutoSelection();
+    if (s.oitAuto && !_settings.oitAuto)
+    {
+        Settings stencil = s;
+        stencil.oit = OrderIndependentTransparency::STENCIL_ROUTED;
+        if (methodInUse(stencil) == OrderIndependentTransparency::STENCIL_ROUTED)
+            _oitSelection = OITAutoSelection();
+        else
+            _oitSelection = OITAutoSelection({OrderIndependentTransparency::LINKED_LIST});
+    }
     if (s.oitAuto) s.oit = _oitSelection.current();
     if (s.samples == 0)
         throw std::invalid_argument("TransitionRenderer: the A-buffer needs at least 1 sample");
@@ -332,15 +351,17 @@ void TransitionRenderer::setSettings(const Settings& settings)
         throw std::invalid_argument("TransitionRenderer: at least 1 routing pass is needed");
     if (!(s.depthEpsilon >= 0.0f) || s.depthEpsilon > 0.01f)
         throw std::invalid_argument("TransitionRenderer: depth epsilon must be in [0, 0.01]");
+    const OrderIndependentTransparency::Method inUse = methodInUse(s);
     const bool rebuild = !_aBuffer.valid() || s.samples != _settings.samples ||
-                         s.maxPasses != _settings.maxPasses || s.oit != _settings.oit;
+                         s.maxPasses != _settings.maxPasses || inUse != _oitInUse;
     _settings = s;
     if (rebuild)
     {
         if (_aBuffer.valid() && _proxy[PROXY_ABUFFER].valid())
             _aBuffer->getRoutedGroup()->removeChild(_proxy[PROXY_ABUFFER].get());
         if (_aBuffer.valid() && _internal.valid()) _internal->removeChild(_aBuffer->getCamera());
-        _aBuffer = OrderIndependentTransparency::create(s.oit, int(s.samples), int(s.maxPasses));
+        _aBuffer = OrderIndependentTransparency::create(inUse, int(s.samples), int(s.maxPasses));
+        _oitInUse = inUse;
         // Same matrices as the G-buffer (the front-depth test compares their depths).
         _aBuffer->getCamera()->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
         _aBuffer->getCamera()->setRenderOrder(osg::Camera::PRE_RENDER, kFirstRenderOrder + 1);
@@ -913,6 +934,8 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     _draws.clear();
     const osg::Viewport* vp = cv.getViewport();
     const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;
+    // The renderer became known since the A-buffer was made (a viewer's first frame queried it).
+    if (methodInUse(_settings) != _oitInUse) setSettings(_settings);
     if (_settings.oitAuto)
     {
         // The routed passes' GPU time of an earlier frame, once per frame measured: the method

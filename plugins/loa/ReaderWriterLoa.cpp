@@ -23,8 +23,8 @@
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
-#include <osgLoA/util/InputLimits>
 #include <osgLoA/util/BoundedObjectReader>
+#include <osgLoA/util/InputLimits>
 #include <osgLoA/util/ModelValidation>
 
 #include <osg/Notify>
@@ -313,7 +313,8 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
     if (!found.empty() && ::stat(found.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
         throw LoaError{RR::ERROR_IN_READING_FILE,
                        context + "model '" + name + "' is not a regular file (a device or FIFO)"};
-    if (!found.empty() && osgLoA::BoundedObjectReader::handlesExtension(osgDB::getLowerCaseFileExtension(found)))
+    if (!found.empty() &&
+        osgLoA::BoundedObjectReader::handlesExtension(osgDB::getLowerCaseFileExtension(found)))
     {
         // OSG's own .osgt/.osgb readers loop forever on a truncated or bit-flipped file and trust
         // the sizes it states: read with the work bounded by the file's size instead.
@@ -324,7 +325,8 @@ osg::ref_ptr<osg::Node> readModel(const std::string& name, const osgDB::Options*
         }
         catch (const osgLoA::MalformedFileError& e)
         {
-            throw LoaError{RR::ERROR_IN_READING_FILE, context + "cannot read model '" + name + "': " + e.what()};
+            throw LoaError{RR::ERROR_IN_READING_FILE,
+                           context + "cannot read model '" + name + "': " + e.what()};
         }
         osgLoA::ModelValidation::validate(*node, name);
         return node;
@@ -468,7 +470,8 @@ public:
                        "classification rule set (.osgt/.osgb/.osgx) tried before the built-in rules");
         supportsOption("rules-only=FILE", "classification rule set used instead of the built-in rules");
         supportsOption("oit=NAME", "order-independent transparency of what fused styles cannot draw: "
-                                   "stencil-routed (default), linked-list, weighted-blended or auto");
+                                   "stencil-routed (default; where its routing is approximate, on llvmpipe, "
+                                   "linked-list unless named), linked-list, weighted-blended or auto");
         osgLoA::InputLimits::declareOptions(*this);
     }
     const char* className() const override { return "osgLoA level-of-abstraction pseudo-loader"; }
@@ -590,6 +593,8 @@ private:
             osgLoA::TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
             rs.oitAuto = opts.oit == "auto";
             if (!rs.oitAuto) rs.oit = osgLoA::OrderIndependentTransparency::methodFromName(opts.oit);
+            // A method named is the method used, even where stencil routing is approximate.
+            rs.approximateStencilRouting = !rs.oitAuto;
             loa->getRenderer()->setSettings(rs);
         }
         return loa;
