@@ -202,3 +202,27 @@ TEST(ShaderLibraryTest, DefinesGoAfterTheVersionLineAndKeepLineNumbers)
         }
     }
 }
+
+// Shader and program names become GL object labels, which GL refuses at GL_MAX_LABEL_LENGTH
+// characters or more (256 on Mesa: "GL_INVALID_VALUE in glObjectLabel(length=351)" for a fused
+// style shader named by its renamed helpers). Names stay within 255 characters.
+TEST(ShaderLibraryTest, NamesFitAGLObjectLabel)
+{
+    EXPECT_EQ(ShaderLibrary::objectLabel("loa_plain.vert.glsl"), "loa_plain.vert.glsl");
+    const std::string exact(255, 'a');
+    EXPECT_EQ(ShaderLibrary::objectLabel(exact), exact);
+    const std::string longer = std::string(250, 'b') + "cdefghij";
+    const std::string cut = ShaderLibrary::objectLabel(longer);
+    EXPECT_EQ(cut.size(), 255u);
+    EXPECT_EQ(cut, std::string(250, 'b') + "cd...");
+
+    ShaderLibrary::Defines renames;
+    for (int i = 0; i < 30; ++i)
+        renames.emplace_back("loa_helperNumber" + std::to_string(i),
+                             "loa_helperNumber" + std::to_string(i) + "_3");
+    osg::ref_ptr<osg::Shader> s = ShaderLibrary::createShader("loa_style_abstract.frag.glsl", renames);
+    EXPECT_LE(s->getName().size(), 255u);
+    EXPECT_EQ(s->getName().compare(0, 28, "loa_style_abstract.frag.glsl"), 0) << s->getName();
+    EXPECT_NE(s->getShaderSource().find("#define loa_helperNumber29 loa_helperNumber29_3"),
+              std::string::npos);
+}

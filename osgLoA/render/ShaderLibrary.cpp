@@ -261,8 +261,15 @@ osg::ref_ptr<osg::Shader> ShaderLibrary::createShader(const std::string& name, c
     std::string label;
     for (const auto& d : defines)
         label += (label.empty() ? "" : " ") + d.first + (d.second.empty() ? std::string() : "=" + d.second);
-    shader->setName(name + "[" + label + "]");
+    shader->setName(objectLabel(name + "[" + label + "]"));
     return shader;
+}
+
+std::string ShaderLibrary::objectLabel(const std::string& name)
+{
+    constexpr std::size_t kMax = 255;
+    if (name.size() <= kMax) return name;
+    return name.substr(0, kMax - 3) + "...";
 }
 
 osg::ref_ptr<osg::Program> ShaderLibrary::createProgram(const std::string& programName,

@@ -429,7 +429,7 @@ osg::StateSet* TransitionRenderer::fusedState(unsigned mask)
     std::string label;
     for (unsigned j : configurations)
         label += (label.empty() ? "" : "+") + _styles[j].style->getName() + "#" + std::to_string(j);
-    p->setName("loa-fused-" + label);
+    p->setName(ShaderLibrary::objectLabel("loa-fused-" + label));
     addFeatureShaders(*p, true);
     // Each style's functions (loa_styleColor and its helpers, included ones too) under names of
     // its own: ShaderLibrary::createShader with `#define NAME NAME_s`.
@@ -479,7 +479,7 @@ osg::StateSet* TransitionRenderer::fusedState(unsigned mask)
     }
     src += "    return vec4(c, dot(w, vec4(1.0)));\n}\n";
     osg::ref_ptr<osg::Shader> fused = new osg::Shader(osg::Shader::FRAGMENT, src);
-    fused->setName("loa_fused[" + label + "]");
+    fused->setName(ShaderLibrary::objectLabel("loa_fused[" + label + "]"));
     p->addShader(fused.get());
     p->addShader(passMain("LOA_PASS_GBUFFER_FUSED").get());
     _programs["fused|" + std::to_string(mask)] = p;
