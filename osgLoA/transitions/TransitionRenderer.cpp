@@ -352,6 +352,7 @@ void TransitionRenderer::setSettings(const Settings& settings)
     if (!(s.depthEpsilon >= 0.0f) || s.depthEpsilon > 0.01f)
         throw std::invalid_argument("TransitionRenderer: depth epsilon must be in [0, 0.01]");
     const OrderIndependentTransparency::Method inUse = methodInUse(s);
+    _oitRendererKnown = !GLCapabilities::lastQueriedRenderer().empty();
     const bool rebuild = !_aBuffer.valid() || s.samples != _settings.samples ||
                          s.maxPasses != _settings.maxPasses || inUse != _oitInUse;
     _settings = s;
@@ -934,8 +935,9 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     _draws.clear();
     const osg::Viewport* vp = cv.getViewport();
     const int w = vp ? std::max(1, int(vp->width())) : 1, h = vp ? std::max(1, int(vp->height())) : 1;
-    // The renderer became known since the A-buffer was made (a viewer's first frame queried it).
-    if (methodInUse(_settings) != _oitInUse) setSettings(_settings);
+    // The renderer became known since the A-buffer was made (a viewer's first frame queried it):
+    // checked only until then, not every frame.
+    if (!_oitRendererKnown && methodInUse(_settings) != _oitInUse) setSettings(_settings);
     if (_settings.oitAuto)
     {
         // The routed passes' GPU time of an earlier frame, once per frame measured: the method
