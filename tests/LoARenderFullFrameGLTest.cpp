@@ -726,9 +726,12 @@ void expectFusedEqualsABuffer(const TestScene& scene, const std::vector<std::str
                     loaNode(scene.model.get(), ScenarioLibrary::createBuiltin(name).get());
                 TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
                 rs.fuseStyles = fuse == 1;
-                // The A-buffer with one sample per pixel (exact coverage at pixel centres, as the
-                // G-buffer's; with 4 it anti-aliases silhouettes on llvmpipe) and passes enough
-                // for its depth complexity.
+                // The reference is the exact per-pixel linked lists, the default A-buffer on
+                // llvmpipe (one geometry pass: the oblique demo city took 2.2 s a frame through
+                // 8 stencil-routed passes at 641x359, 0.49 s with the lists). The routed methods
+                // agree with each other (OITMethodsAgree*). One sample per pixel: exact coverage
+                // at pixel centres, as the G-buffer's.
+                rs.oit = OrderIndependentTransparency::LINKED_LIST;
                 rs.samples = 1;
                 rs.maxPasses = 8;
                 loa->getRenderer()->setSettings(rs);
@@ -748,12 +751,15 @@ void expectFusedEqualsABuffer(const TestScene& scene, const std::vector<std::str
             const auto cmp = ImageComparison::compare(*frames[1], *frames[0], 16);
             const EdgeSplit split = compareAwayFromEdges(*frames[1], *frames[0]);
             const double pixels = double(frames[0]->s()) * frames[0]->t();
-            const bool ok = cmp.sizesMatch && cmp.meanDifference <= 1.0 &&
-                            double(split.failingAwayFromEdges) <= 0.0005 * pixels;
+            // Against the linked lists, at most 36 pixels of a frame (0.016 %) differ by more
+            // than 16/255, all on silhouettes (measured on the demo city and the real scenes).
+            const bool ok = cmp.sizesMatch && cmp.meanDifference <= 0.5 &&
+                            double(cmp.failingPixels) <= 0.0005 * pixels &&
+                            double(split.failingAwayFromEdges) <= 0.0001 * pixels;
             std::cout << "fused " << label << ": " << stats[1].fusedDraws << " fused draws ("
                       << stats[1].fusedPrograms << " programs), A-buffer draws " << stats[0].aBufferDraws
                       << " -> " << stats[1].aBufferDraws << "; " << cmp.summary() << "; away from edges "
-                      << split.failingAwayFromEdges << " failing (bar " << 0.0005 * pixels << ")\n";
+                      << split.failingAwayFromEdges << " failing (bars: " << 0.0005 * pixels << " in the frame, " << 0.0001 * pixels << " away from edges)\n";
             std::string file =
                 "fused-" + scene.name + "-" + camera + "-" + name + "-" + std::to_string(width);
             if (vp) file += "-viewport";

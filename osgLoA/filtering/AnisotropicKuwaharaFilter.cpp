@@ -13,7 +13,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<AnisotropicKuwaharaFilter>
-    s_registered("akf",
+    s_registeredAnisotropicKuwaharaFilter("akf",
                  "anisotropic Kuwahara filter (Kyprianidis et al. 2009, polynomial weights; levels > 1: "
                  "multi-scale after Kyprianidis 2011)");
 

@@ -8,7 +8,7 @@
 namespace osgLoA
 {
 
-static FilterRegistry::Entry<BilateralFilter> s_registered(
+static FilterRegistry::Entry<BilateralFilter> s_registeredBilateralFilter(
     "bilateral",
     "bilateral filter (Tomasi and Manduchi 1998; sigma_d, sigma_r, radius, color_space, range_norm)");
 

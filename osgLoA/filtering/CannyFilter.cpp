@@ -14,7 +14,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<CannyFilter>
-    s_registered("canny",
+    s_registeredCannyFilter("canny",
                  "Canny edges: Gaussian (sigma), Sobel, non-maximum suppression, hysteresis (low, high)");
 
 namespace

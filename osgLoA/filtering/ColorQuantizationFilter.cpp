@@ -9,7 +9,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<ColorQuantizationFilter>
-    s_registered("quantize",
+    s_registeredColorQuantizationFilter("quantize",
                  "soft luminance quantization in CIELab (Winnemoeller et al. 2006; levels, phi_q)");
 
 float ColorQuantizationFilter::quantizeLightness(float lightness, int levels, float phiQ)

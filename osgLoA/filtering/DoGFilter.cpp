@@ -11,7 +11,7 @@
 namespace osgLoA
 {
 
-static FilterRegistry::Entry<DoGFilter> s_registered(
+static FilterRegistry::Entry<DoGFilter> s_registeredDoGFilter(
     "dog", "difference of Gaussians on L*: isotropic (flow=0) or flow-based FDoG (flow=1), XDoG threshold");
 
 namespace

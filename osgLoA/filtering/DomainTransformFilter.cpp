@@ -7,7 +7,7 @@
 namespace osgLoA
 {
 
-static FilterRegistry::Entry<DomainTransformFilter> s_registered(
+static FilterRegistry::Entry<DomainTransformFilter> s_registeredDomainTransformFilter(
     "domain_transform",
     "domain transform recursive filter (Gastal and Oliveira 2011; sigma_s, sigma_r, iterations)");
 

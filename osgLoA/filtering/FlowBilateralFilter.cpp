@@ -11,7 +11,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<FlowBilateralFilter>
-    s_registered("flow_bilateral",
+    s_registeredFlowBilateralFilter("flow_bilateral",
                  "flow-based (orientation-aligned) bilateral filter in CIELab, Kyprianidis & Doellner 2008");
 
 namespace

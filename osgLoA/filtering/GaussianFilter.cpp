@@ -7,7 +7,7 @@
 namespace osgLoA
 {
 
-static FilterRegistry::Entry<GaussianFilter> s_registered("gaussian", "Gaussian smoothing (sigma texels)");
+static FilterRegistry::Entry<GaussianFilter> s_registeredGaussianFilter("gaussian", "Gaussian smoothing (sigma texels)");
 
 int GaussianFilter::radiusFor(float sigma)
 {

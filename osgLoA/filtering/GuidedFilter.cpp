@@ -8,7 +8,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<GuidedFilter>
-    s_registered("guided", "guided filter, self-guided with the colour image (He et al. 2013; radius, eps)");
+    s_registeredGuidedFilter("guided", "guided filter, self-guided with the colour image (He et al. 2013; radius, eps)");
 
 namespace
 {

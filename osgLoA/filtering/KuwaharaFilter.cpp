@@ -9,7 +9,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<KuwaharaFilter>
-    s_registered("kuwahara",
+    s_registeredKuwaharaFilter("kuwahara",
                  "classic Kuwahara filter: mean of the least-variance of 4 square sectors (radius texels)");
 
 namespace

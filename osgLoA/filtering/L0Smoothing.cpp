@@ -8,7 +8,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<L0Smoothing>
-    s_registered("l0", "L0 gradient minimization (Xu et al. 2011; lambda, kappa, beta_max); CPU only");
+    s_registeredL0Smoothing("l0", "L0 gradient minimization (Xu et al. 2011; lambda, kappa, beta_max); CPU only");
 
 namespace
 {

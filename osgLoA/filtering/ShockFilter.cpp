@@ -13,7 +13,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<ShockFilter>
-    s_registered("shock",
+    s_registeredShockFilter("shock",
                  "coherence-enhancing shock filtering (Kyprianidis & Kang 2011): flow-guided smoothing "
                  "and directional shock filter, iterated");
 

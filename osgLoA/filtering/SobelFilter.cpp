@@ -8,7 +8,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<SobelFilter>
-    s_registered("sobel",
+    s_registeredSobelFilter("sobel",
                  "Sobel gradient magnitude of luminance (threshold=0), or black edges where M >= threshold");
 
 osg::Vec2f SobelFilter::gradient(const FilterImage& image, int x, int y, const ImageBorder& border)
