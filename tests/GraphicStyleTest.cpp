@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <fstream>
@@ -439,6 +440,23 @@ TEST(GraphicStyleTest, BuiltinsRoundTripInOsgtAndOsgb)
         for (const char* ext : {"osgt", "osgb"})
         {
             osg::ref_ptr<GraphicStyle> s = GraphicStyle::createBuiltin(name);
+            osg::ref_ptr<GraphicStyle> back = roundTrip(*s, dir, ext);
+            ASSERT_TRUE(back.valid()) << name << "." << ext;
+            expectSameStyle(*s, *back);
+        }
+}
+
+// The catalog's styles beyond the built-ins (palette, waterlining, ...) too: every style a
+// scenario can name is written and read back the same.
+TEST(GraphicStyleTest, EveryCatalogStyleRoundTripsInOsgtAndOsgb)
+{
+    const std::string dir = loatest::freshDirectory("GraphicStyleCatalogRoundTrip");
+    const std::vector<std::string> names = GraphicStyleCatalog::instance().names();
+    EXPECT_NE(std::find(names.begin(), names.end(), "waterlining"), names.end());
+    for (const std::string& name : names)
+        for (const char* ext : {"osgt", "osgb"})
+        {
+            osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create(name);
             osg::ref_ptr<GraphicStyle> back = roundTrip(*s, dir, ext);
             ASSERT_TRUE(back.valid()) << name << "." << ext;
             expectSameStyle(*s, *back);

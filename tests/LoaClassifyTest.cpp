@@ -242,3 +242,23 @@ TEST(LoaClassifyTest, SeveralModelsAreOneScene)
     for (const auto& kv : j.items())
         EXPECT_EQ(kv.value().get<int>(), ja[kv.key()].get<int>() + jb[kv.key()].get<int>()) << kv.key();
 }
+
+// A real OpenStreetMap extract on a real GeoTIFF DEM (both from Debian's python-osmnx-doc): the tool,
+// a process of its own, reads the DEM. (Since OSM is read with libosmium nothing registered GDAL's
+// raster drivers in the tools, and every DEM failed with "No driver registered"; the OSM import
+// tests did not see it because they write their DEM with GDAL first, which registers them.)
+TEST(LoaClassifyTest, ReadsARealOsmFileOnARealDem)
+{
+    const std::string dir = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/";
+    if (!osgDB::fileExists(dir + "elevation1.tif"))
+        GTEST_SKIP() << "python-osmnx-doc is not extracted: run scripts/fetch-test-data";
+    std::string out;
+    ASSERT_EQ(loatest::run(
+                  classify() + " '" + dir + "West-Oakland.osm.bz2' -O 'dem=" + dir + "elevation1.tif'", out),
+              0)
+        << out;
+    // Counted in the file: 23 ways tagged building, 31 tagged highway, 2 green areas (leisure=park,
+    // leisure=playground), and the ground the reader adds.
+    EXPECT_NE(out.find("57 features: 23 building, 31 street, 0 water, 2 green, 1 terrain"), std::string::npos)
+        << out;
+}

@@ -11,7 +11,7 @@ namespace osgLoA
 {
 
 static FilterRegistry::Entry<AbstractionLevelsFilter>
-    s_registered("abstraction_levels",
+    s_registeredAbstractionLevelsFilter("abstraction_levels",
                  "iterated Kuwahara levels chosen per pixel by the focus weight in alpha "
                  "(paper 001 abstraction levels)");
 

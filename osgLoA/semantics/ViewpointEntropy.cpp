@@ -2,6 +2,8 @@
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/ViewpointEntropy>
 
+#include "../util/TriangleCollector.h"
+
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/Notify>
@@ -23,49 +25,6 @@ namespace osgLoA
 namespace
 {
 // ---------------------------------------------------------------- triangle collection
-
-struct TriangleSink
-{
-    std::vector<osg::Vec3>* out = nullptr;
-    osg::Matrixd matrix;
-    void operator()(const osg::Vec3& a, const osg::Vec3& b, const osg::Vec3& c)
-    {
-        out->push_back(osg::Vec3(osg::Vec3d(a) * matrix));
-        out->push_back(osg::Vec3(osg::Vec3d(b) * matrix));
-        out->push_back(osg::Vec3(osg::Vec3d(c) * matrix));
-    }
-};
-
-class TriangleCollector : public osg::NodeVisitor
-{
-public:
-    TriangleCollector(const osg::Matrixd& toWorld, std::vector<osg::Vec3>& out)
-        : osg::NodeVisitor(TRAVERSE_ACTIVE_CHILDREN), _out(out)
-    {
-        _stack.push_back(toWorld);
-    }
-
-    void apply(osg::Transform& t) override
-    {
-        osg::Matrixd m = _stack.back();
-        t.computeLocalToWorldMatrix(m, this);
-        _stack.push_back(m);
-        traverse(t);
-        _stack.pop_back();
-    }
-
-    void apply(osg::Drawable& d) override
-    {
-        osg::TriangleFunctor<TriangleSink> f;
-        f.out = &_out;
-        f.matrix = _stack.back();
-        d.accept(f);
-    }
-
-private:
-    std::vector<osg::Vec3>& _out;
-    std::vector<osg::Matrixd> _stack;
-};
 
 // ---------------------------------------------------------------- face merging
 
@@ -208,9 +167,12 @@ double ViewpointEntropy::entropy(const std::vector<double>& areas, double backgr
 
 std::vector<osg::Vec3> ViewpointEntropy::collectTriangles(osg::Node& node, const osg::Matrixd& toWorld)
 {
-    std::vector<osg::Vec3> out;
-    TriangleCollector c(toWorld, out);
+    TriangleCollector c(toWorld);
     node.accept(c);
+    std::vector<osg::Vec3> out;
+    out.reserve(c.corners().size());
+    for (const osg::Vec3d& v : c.corners())
+        out.push_back(osg::Vec3(v));
     return out;
 }
 

@@ -4,6 +4,7 @@
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/StylePreparation>
 #include <osgLoA/styles/TextureAbstraction>
+#include <osgLoA/styles/Waterlining>
 #include <osgLoA/transitions/UsageScenario>
 
 #include <osg/Notify>
@@ -20,7 +21,7 @@ namespace osgLoA
 
 namespace
 {
-const char* const kKnown[] = {"abstract", "palette"};
+const char* const kKnown[] = {"abstract", "palette", "waterlining"};
 
 std::string join(const std::vector<std::string>& v)
 {
@@ -66,6 +67,7 @@ void StylePreparation::Report::add(const Report& other)
 {
     styles.insert(styles.end(), other.styles.begin(), other.styles.end());
     palettes += other.palettes;
+    waterFeatures += other.waterFeatures;
     abstractTextures += other.abstractTextures;
     abstractFromCache += other.abstractFromCache;
     skipped += other.skipped;
@@ -105,6 +107,32 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             report.skipped += unsigned(skipped.size());
             report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
             say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
+        }
+        else if (style == "waterlining")
+        {
+            const auto start = std::chrono::steady_clock::now();
+            const Waterlining::ShoreMap map = Waterlining::attach(model);
+            report.waterFeatures += map.waterFeatures;
+            if (!map.valid())
+            {
+                const std::string line = "waterlining: the model has no water surface (" +
+                                         std::to_string(map.waterFeatures) +
+                                         " water feature(s)): water draws as cartographic";
+                OSG_WARN << "osgLoA: " << line << std::endl;
+                report.messages.push_back(line);
+            }
+            else
+            {
+                char b[200];
+                std::snprintf(
+                    b, sizeof b,
+                    "osgLoA: waterlining: shoreline map of %u water feature(s), %u triangles: %dx%d "
+                    "texels of %.3g units, %zu water, in %.1f s",
+                    map.waterFeatures, map.triangles, map.grid.width, map.grid.height, map.grid.texelSize,
+                    map.waterTexels,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                say(b);
+            }
         }
         else if (style == "abstract" && model.getStateSet() &&
                  model.getStateSet()->getUniform(FilterConfiguration::kFilteredDiffuseFlag))

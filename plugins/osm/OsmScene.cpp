@@ -110,6 +110,10 @@ class DemGround : public Ground
 public:
     DemGround(const std::string& path, const OGRSpatialReference& local)
     {
+        // The raster drivers: nothing else registers them since the OSM data is read with
+        // libosmium (without this, every DEM failed with "No driver registered" outside the tests,
+        // whose own GDAL calls had registered them). Idempotent and thread-safe.
+        GDALAllRegister();
         GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VERBOSE_ERROR));
         if (!ds)
             throw std::runtime_error("dem: cannot open '" + path + "' as a raster (" + CPLGetLastErrorMsg() +

@@ -1,0 +1,233 @@
+/* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/semantics/Feature>
+#include <osgLoA/semantics/FeatureIndex>
+#include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/Waterlining>
+
+#include "../util/TriangleCollector.h"
+
+#include <osg/Geode>
+#include <osg/Geometry>
+#include <osg/Image>
+#include <osg/Transform>
+#include <osg/TriangleFunctor>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace osgLoA
+{
+
+namespace
+{
+// Registers the style when the library is loaded, so that scenarios read before any water code
+// runs can name it.
+struct WaterliningRegistrar
+{
+    WaterliningRegistrar() { Waterlining::registerStyle(); }
+} s_waterliningRegistrar;
+
+} // namespace
+
+osg::ref_ptr<GraphicStyle> Waterlining::create()
+{
+    osg::ref_ptr<GraphicStyle> s = GraphicStyle::createBuiltin("cartographic");
+    s->setName(name());
+    s->setDescription("cartographic, with lines parallel to the shore inside water at widening intervals "
+                      "(waterlining, paper 004 Figure 8A)");
+    s->setFragmentShader("loa_style_waterlining.frag.glsl");
+    osg::StateSet* p = s->getParameters();
+    p->setName(std::string(name()) + " parameters");
+    const Lines l;
+    p->addUniform(new osg::Uniform("loa_waterlining_lineColor", osg::Vec3f(31, 120, 180) / 255.0f));
+    p->addUniform(new osg::Uniform("loa_waterlining_spacing", l.spacing));
+    p->addUniform(new osg::Uniform("loa_waterlining_exponent", l.exponent));
+    p->addUniform(new osg::Uniform("loa_waterlining_count", l.count));
+    p->addUniform(new osg::Uniform("loa_waterlining_width", l.width));
+    p->addUniform(new osg::Uniform("loa_waterlining_fade", l.fade));
+    p->addUniform(new osg::Uniform("loa_waterlining_shoreline", l.shoreline));
+    return s;
+}
+
+void Waterlining::registerStyle()
+{
+    GraphicStyleCatalog::instance().add(*create());
+}
+
+double Waterlining::lineDistance(int k, const Lines& lines)
+{
+    return double(lines.spacing) * std::pow(double(k), double(std::max(lines.exponent, 1e-3f)));
+}
+
+double Waterlining::lineCoverage(double d, double pixelSize, const Lines& lines)
+{
+    if (!(d >= 0.0) || !(pixelSize > 0.0) || !(lines.spacing > 0.0f)) return 0.0;
+    const double e = std::max(double(lines.exponent), 1e-3);
+    const int count = std::max(lines.count, 0);
+    const int k0 = int(std::lround(std::pow(d / lines.spacing, 1.0 / e)));
+    double best = 0.0;
+    for (int k = k0 - 1; k <= k0 + 1; ++k)
+    {
+        if (k < (lines.shoreline ? 0 : 1) || k > count) continue;
+        const double dk = lineDistance(k, lines);
+        const double strength =
+            k == 0 ? 1.0 : 1.0 - double(lines.fade) * double(k - 1) / double(std::max(count - 1, 1));
+        const double c = std::clamp(0.5 * lines.width + 0.5 - std::fabs(d - dk) / pixelSize, 0.0, 1.0);
+        best = std::max(best, std::clamp(strength, 0.0, 1.0) * c);
+    }
+    return best;
+}
+
+float Waterlining::ShoreMap::sample(double x, double y) const
+{
+    if (!valid()) return std::numeric_limits<float>::infinity();
+    // GL_LINEAR with clamp-to-edge: texel centres at i + 0.5.
+    const osg::Vec2d t = grid.worldToTexel(osg::Vec2d(x, y)) - osg::Vec2d(0.5, 0.5);
+    const double fx = std::clamp(t.x(), 0.0, double(grid.width - 1));
+    const double fy = std::clamp(t.y(), 0.0, double(grid.height - 1));
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const int x1 = std::min(x0 + 1, grid.width - 1), y1 = std::min(y0 + 1, grid.height - 1);
+    const double ax = fx - x0, ay = fy - y0;
+    auto at = [&](int i, int j) { return double(distance[std::size_t(j) * std::size_t(grid.width) + i]); };
+    return float((1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) +
+                 ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1)));
+}
+
+Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolution)
+{
+    if (resolution < 2 || resolution > DistanceField::kMaxResolution)
+        throw std::invalid_argument("waterlining: resolution " + std::to_string(resolution) +
+                                    " is not in 2.." + std::to_string(DistanceField::kMaxResolution));
+    ShoreMap map;
+    FeatureIndex index(model);
+    // The water features' triangles, and the terrain's: where the terrain lies above the water
+    // surface the water is hidden, and the shore is where it emerges (a river's polygon reaches
+    // under its banks).
+    std::vector<osg::Vec3d> corners, terrain;
+    std::set<const Feature*> features;
+    for (const FeatureIndex::Entry& e : index.entries())
+    {
+        osg::ref_ptr<osg::Node> node;
+        const FeatureType type = e.feature->getType();
+        if ((type != FeatureType::Water && type != FeatureType::Terrain) || !e.node.lock(node)) continue;
+        // A nested feature is collected with its enclosing one when that is of its type too.
+        if (e.parent >= 0 && index.entries()[std::size_t(e.parent)].feature->getType() == type) continue;
+        if (type == FeatureType::Water) features.insert(e.feature.get());
+        osg::NodePath path = index.pathOf(e);
+        if (!path.empty()) path.pop_back();
+        TriangleCollector collect(osg::computeLocalToWorld(path), osg::NodeVisitor::TRAVERSE_ALL_CHILDREN);
+        collect.setNodeMaskOverride(~0u);
+        node->accept(collect);
+        std::vector<osg::Vec3d>& out = type == FeatureType::Water ? corners : terrain;
+        const std::vector<osg::Vec3d>& c = collect.corners();
+        for (std::size_t t = 0; t + 2 < c.size(); t += 3)
+        {
+            // Walls and other faces without a ground footprint cover no texel centre.
+            const double area2 = (c[t + 1].x() - c[t].x()) * (c[t + 2].y() - c[t].y()) -
+                                 (c[t + 2].x() - c[t].x()) * (c[t + 1].y() - c[t].y());
+            if (!std::isfinite(area2) || std::fabs(area2) < 1e-12) continue;
+            out.insert(out.end(), c.begin() + std::ptrdiff_t(t), c.begin() + std::ptrdiff_t(t + 3));
+        }
+    }
+    map.waterFeatures = unsigned(features.size());
+    map.triangles = unsigned(corners.size() / 3);
+    if (corners.empty()) return map;
+    osg::BoundingBoxd box;
+    for (const osg::Vec3d& c : corners)
+        box.expandBy(osg::Vec3d(c.x(), c.y(), 0.0));
+    const double extent = std::max(box.xMax() - box.xMin(), box.yMax() - box.yMin());
+    if (!(extent > 0.0) || !std::isfinite(extent)) return map;
+    // resolution - 2 texels across the footprint, one land texel of margin on each side.
+    const double texel = extent / double(resolution - 2);
+    osg::BoundingBoxd area(box.xMin() - texel, box.yMin() - texel, 0.0, box.xMax() + texel,
+                           box.yMax() + texel, 0.0);
+    map.grid = DistanceField::Grid::cover(area, texel, resolution);
+    const DistanceField::Grid& g = map.grid;
+    // The highest water and terrain surface at each texel centre (closed triangles: edges count),
+    // interpolated in the triangle; -infinity where there is none.
+    const double none = -std::numeric_limits<double>::infinity();
+    std::vector<double> waterTop(std::size_t(g.width) * std::size_t(g.height), none), terrainTop(waterTop);
+    auto rasterize = [&](const std::vector<osg::Vec3d>& tris, std::vector<double>& top)
+    {
+        for (std::size_t t = 0; t + 2 < tris.size(); t += 3)
+        {
+            const osg::Vec2d a = g.worldToTexel(osg::Vec2d(tris[t].x(), tris[t].y())),
+                             b = g.worldToTexel(osg::Vec2d(tris[t + 1].x(), tris[t + 1].y())),
+                             c = g.worldToTexel(osg::Vec2d(tris[t + 2].x(), tris[t + 2].y()));
+            const double orient = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+            if (orient == 0.0) continue;
+            const int i0 = std::max(0, int(std::floor(std::min({a.x(), b.x(), c.x()}) - 0.5)));
+            const int i1 = std::min(g.width - 1, int(std::ceil(std::max({a.x(), b.x(), c.x()}) - 0.5)));
+            const int j0 = std::max(0, int(std::floor(std::min({a.y(), b.y(), c.y()}) - 0.5)));
+            const int j1 = std::min(g.height - 1, int(std::ceil(std::max({a.y(), b.y(), c.y()}) - 0.5)));
+            auto edge = [&](const osg::Vec2d& p, const osg::Vec2d& q, double x, double y)
+            { return ((q.x() - p.x()) * (y - p.y()) - (x - p.x()) * (q.y() - p.y())) / orient; };
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                {
+                    const double x = i + 0.5, y = j + 0.5;
+                    // Barycentric weights of a, b, c (each >= 0 inside).
+                    const double wa = edge(b, c, x, y), wb = edge(c, a, x, y), wc = edge(a, b, x, y);
+                    if (wa < 0 || wb < 0 || wc < 0) continue;
+                    const double z = wa * tris[t].z() + wb * tris[t + 1].z() + wc * tris[t + 2].z();
+                    double& cell = top[std::size_t(j) * std::size_t(g.width) + std::size_t(i)];
+                    cell = std::max(cell, z);
+                }
+        }
+    };
+    rasterize(corners, waterTop);
+    rasterize(terrain, terrainTop);
+    // Water where a water surface lies at the texel and no terrain above it (by more than a
+    // thousandth of the footprint: coplanar ground does not hide it).
+    const double above = 1e-3 * extent;
+    std::vector<unsigned char> water(waterTop.size(), 0);
+    for (std::size_t i = 0; i < water.size(); ++i)
+        water[i] = waterTop[i] > none && !(terrainTop[i] > waterTop[i] + above) ? 1 : 0;
+    DistanceField::Seeds land(g.width, g.height);
+    for (std::size_t i = 0; i < water.size(); ++i)
+    {
+        land.mask[i] = water[i] ? 0 : 1;
+        map.waterTexels += water[i];
+    }
+    const DistanceField::Map exact = DistanceField::computeExact(land);
+    map.distance.resize(exact.distance.size());
+    for (std::size_t i = 0; i < exact.distance.size(); ++i)
+        map.distance[i] = float(double(exact.distance[i]) * g.texelSize);
+    return map;
+}
+
+osg::ref_ptr<osg::Texture2D> Waterlining::createTexture(const ShoreMap& map)
+{
+    osg::ref_ptr<osg::Image> image = new osg::Image;
+    image->allocateImage(map.grid.width, map.grid.height, 1, GL_RED, GL_FLOAT);
+    image->setInternalTextureFormat(GL_R32F);
+    std::copy(map.distance.begin(), map.distance.end(), reinterpret_cast<float*>(image->data()));
+    osg::ref_ptr<osg::Texture2D> texture = new osg::Texture2D(image.get());
+    texture->setName("osgLoA waterlining shore distance");
+    texture->setInternalFormat(GL_R32F);
+    texture->setSourceFormat(GL_RED);
+    texture->setSourceType(GL_FLOAT);
+    texture->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR);
+    texture->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+    texture->setWrap(osg::Texture::WRAP_S, osg::Texture::CLAMP_TO_EDGE);
+    texture->setWrap(osg::Texture::WRAP_T, osg::Texture::CLAMP_TO_EDGE);
+    texture->setResizeNonPowerOfTwoHint(false);
+    texture->setUseHardwareMipMapGeneration(false);
+    return texture;
+}
+
+Waterlining::ShoreMap Waterlining::attach(osg::Node& model, int resolution)
+{
+    ShoreMap map = computeShoreMap(model, resolution);
+    if (!map.valid()) return map;
+    osg::StateSet* ss = model.getOrCreateStateSet();
+    ss->setTextureAttribute(kUnit, createTexture(map).get());
+    ss->addUniform(new osg::Uniform("loa_waterDistance", int(kUnit)));
+    ss->addUniform(new osg::Uniform("loa_waterDistanceTransform", map.grid.textureTransform()));
+    ss->addUniform(new osg::Uniform("loa_hasWaterDistance", true));
+    return map;
+}
+
+} // namespace osgLoA

@@ -1,0 +1,101 @@
+// Top-down views of small map scenes for the cartographic styles' tests (waterlining, relief):
+// horizontal quads as features, and a model drawn through a LoA node in one style, orthographic
+// from above, north up.
+#pragma once
+
+#include <osgLoA/render/OffscreenRenderer>
+#include <osgLoA/semantics/Feature>
+#include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/ScenarioLibrary>
+#include <osgLoA/util/ImageFile>
+
+#include <osg/BoundingBox>
+#include <osg/Geometry>
+#include <osgDB/FileUtils>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace loatest
+{
+
+struct Viewport
+{
+    int x = 0, y = 0, w = 0, h = 0;
+};
+
+/** The plane z = a x + b y + c over [x0, x1] x [y0, y1]: one quad with its normal, white. */
+inline osg::ref_ptr<osg::Geometry> planeQuad(double x0, double y0, double x1, double y1, double a = 0.0,
+                                             double b = 0.0, double c = 0.0)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    for (const osg::Vec2d& p :
+         {osg::Vec2d(x0, y0), osg::Vec2d(x1, y0), osg::Vec2d(x1, y1), osg::Vec2d(x0, y1)})
+        v->push_back(osg::Vec3(p.x(), p.y(), a * p.x() + b * p.y() + c));
+    g->setVertexArray(v.get());
+    osg::Vec3 n(-a, -b, 1.0);
+    n.normalize();
+    osg::ref_ptr<osg::Vec3Array> na = new osg::Vec3Array;
+    na->push_back(n);
+    g->setNormalArray(na.get(), osg::Array::BIND_OVERALL);
+    osg::ref_ptr<osg::Vec4Array> col = new osg::Vec4Array;
+    col->push_back(osg::Vec4(1, 1, 1, 1));
+    g->setColorArray(col.get(), osg::Array::BIND_OVERALL);
+    g->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 4));
+    return g;
+}
+
+/** child under a group that carries a Feature of this id and type. */
+inline osg::ref_ptr<osg::Node> asFeature(osg::Node* child, unsigned id, osgLoA::FeatureType type)
+{
+    osg::ref_ptr<osg::Group> g = new osg::Group;
+    g->addChild(child);
+    osgLoA::Feature::attach(*g, new osgLoA::Feature(id, type));
+    return g;
+}
+
+/** The model drawn top-down (orthographic from above view's z range, north up) over view's x/y
+ *  through a LoA node whose scenario draws everything in `style`; with an offset viewport the whole
+ *  target is drawn once first (what stays outside it). */
+inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, const std::string& style, int width, int height,
+                                        const Viewport& vp, const osg::BoundingBoxd& view)
+{
+    osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
+    loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());
+    loa->addChild(model);
+    osgLoA::OffscreenRenderer::Settings s;
+    s.width = width;
+    s.height = height;
+    s.clearColor = osg::Vec4(0.2f, 0.3f, 0.4f, 1.0f);
+    osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
+    r->setSceneData(loa.get());
+    const double top = view.zMax() + 500.0;
+    auto pose = [&]
+    {
+        r->getCamera()->setProjectionMatrixAsOrtho(view.xMin(), view.xMax(), view.yMin(), view.yMax(), 1.0,
+                                                   top - view.zMin() + 10.0);
+        r->setViewMatrixAsLookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
+    };
+    if (vp.w != width || vp.h != height || vp.x || vp.y)
+    {
+        pose();
+        r->renderImage();
+        r->getCamera()->setViewport(vp.x, vp.y, vp.w, vp.h);
+    }
+    pose();
+    osg::ref_ptr<osg::Image> image = r->renderImage();
+    EXPECT_EQ(loa->getBindError(), "") << style;
+    return image;
+}
+
+/** Writes a frame a test made into the build's test-output/<folder>/<name>.png, to look at. */
+inline void keepFrame(const std::string& folder, const osg::Image& image, const std::string& name)
+{
+    const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/" + folder;
+    osgDB::makeDirectory(dir);
+    osgLoA::ImageFile::write(dir + "/" + name + ".png", image);
+}
+
+} // namespace loatest
