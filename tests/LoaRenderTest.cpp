@@ -97,13 +97,31 @@ TEST(LoaRenderTest, ListStylesPrintsEveryStyleWithItsDescription)
         EXPECT_EQ(line.find("(no description)"), std::string::npos) << line;
         lines.push_back(line.substr(0, gap));
     }
-    for (const char* name :
-         {"photorealistic", "abstract", "cartographic", "blueprint", "hidden", "dog", "kuwahara3",
-          "kuwahara5", "kuwahara-dog", "adaptive", "adaptive-segmented", "cel", "pencil", "sobel", "canny",
-          "hybrid-toon", "hybrid-pencil", "adaptive-hybrid-toon", "adaptive-hybrid-pencil"})
+    for (const char* name : {"photorealistic",
+                             "abstract",
+                             "cartographic",
+                             "blueprint",
+                             "hidden",
+                             "dog",
+                             "kuwahara3",
+                             "kuwahara5",
+                             "kuwahara-dog",
+                             "adaptive",
+                             "adaptive-segmented",
+                             "cel",
+                             "pencil",
+                             "sobel",
+                             "canny",
+                             "hybrid-toon",
+                             "hybrid-pencil",
+                             "adaptive-hybrid-toon",
+                             "adaptive-hybrid-pencil",
+                             "palette",
+                             "waterlining",
+                             "relief"})
         EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
                                                                             << out;
-    EXPECT_EQ(lines.size(), 20u) << out;
+    EXPECT_EQ(lines.size(), 22u) << out;
 }
 
 TEST(LoaRenderTest, HelpDocumentsEveryOption)

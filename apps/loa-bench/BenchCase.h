@@ -75,6 +75,11 @@ std::vector<Row> abuffer(unsigned frames, std::string& renderer);
  *  and top cameras. Scenarios with fused styles and without (A-buffer only). */
 std::vector<Row> transitions(unsigned frames, std::string& renderer);
 
+/** Case "cartographic" (BenchCartographic.cpp): waterlining and relief against flat cartographic
+ *  (the ratio of medians in the same run) on the demo city and opencity-block, 1280x720 and
+ *  1920x1080, oblique and top cameras. */
+std::vector<Row> cartographic(unsigned frames, std::string& renderer);
+
 /** Case "filters" (BenchFilters.cpp): each image filter on a 512x512 texture: our GPU passes, our
  *  CPU reference and OpenCV's implementation where it has one (built with OpenCV only). */
 std::vector<Row> filters(unsigned frames, std::string& renderer);

@@ -90,6 +90,11 @@ cases:
                  the A-buffer; lost = fraction of pixels whose fragments did not all fit it)
                  and fuse=on (fused styles); error of the fused row = its difference from the
                  fuse=off frame (mean, 0..255; fraction of pixels over 16/255)
+  cartographic   the cartographic devices of paper 004 §3.2.3 (waterlining, relief) against
+                 flat cartographic, each a homogeneous style through the LoA pipeline, on the
+                 demo city and opencity-block at 1280x720 and 1920x1080 from the oblique and
+                 top cameras: ms per frame and ratio_to_cartographic (medians of the same run);
+                 every frame checked against plain rendering's coverage
   filters        each image filter of paper 000 on a 512x512 texture: our GPU passes, our
                  CPU reference, OpenCV's implementation where it has one; error = ours
                  against OpenCV (8-bit units)
@@ -423,6 +428,7 @@ int main(int argc, char** argv)
                                                                {"distance-field", distanceField},
                                                                {"abuffer", abuffer},
                                                                {"transitions", transitions},
+                                                               {"cartographic", cartographic},
                                                                {"filters", filters},
                                                                {"preprocess", preprocess},
                                                                {"filtering", filtering},

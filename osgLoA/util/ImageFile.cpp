@@ -2,7 +2,11 @@
 #include <osgLoA/util/ImageFile>
 
 #ifdef OSGLOA_WITH_OPENIMAGEIO
-#include <OpenImageIO/imageio.h>
+#include <osgDB/FileNameUtils>
+
+#include <dlfcn.h>
+
+#include <mutex>
 #else
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
@@ -36,33 +40,55 @@ int channelsOf(GLenum format)
 } // namespace
 
 #ifdef OSGLOA_WITH_OPENIMAGEIO
+namespace
+{
+/** libosgLoA_imageio (osgLoA/imageio/ImageFileModule.cpp), loaded beside this library on the first
+ *  image read or written: OpenImageIO's 260 libraries cost every process 0.4 s at start. */
+struct ImageIOModule
+{
+    bool (*read)(const char*, osg::Image*, std::string*) = nullptr;
+    bool (*write)(const char*, const osg::Image*, int, std::string*) = nullptr;
+    std::string error;
+};
+
+const ImageIOModule& imageIO()
+{
+    static ImageIOModule module;
+    static std::once_flag once;
+    std::call_once(
+        once,
+        []
+        {
+            Dl_info info;
+            std::string dir;
+            if (dladdr(reinterpret_cast<void*>(&imageIO), &info) && info.dli_fname)
+                dir = osgDB::getFilePath(info.dli_fname);
+            const std::string path = (dir.empty() ? std::string() : dir + "/") + "libosgLoA_imageio.so";
+            void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+            if (!handle)
+            {
+                const char* e = dlerror();
+                module.error = "cannot load osgLoA's image module '" + path + "': " + (e ? e : "?");
+                return;
+            }
+            module.read = reinterpret_cast<bool (*)(const char*, osg::Image*, std::string*)>(
+                dlsym(handle, "osgLoA_imageio_read"));
+            module.write = reinterpret_cast<bool (*)(const char*, const osg::Image*, int, std::string*)>(
+                dlsym(handle, "osgLoA_imageio_write"));
+            if (!module.read || !module.write)
+                module.error = "osgLoA's image module '" + path + "' lacks its functions";
+        });
+    if (!module.error.empty()) throw std::runtime_error(module.error);
+    return module;
+}
+} // namespace
+
 osg::ref_ptr<osg::Image> ImageFile::read(const std::string& path)
 {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
-        throw std::runtime_error("image '" + path + "' is empty");
-    const int channels = spec.nchannels >= 4 ? 4 : 3;
     osg::ref_ptr<osg::Image> image = new osg::Image;
-    image->allocateImage(spec.width, spec.height, 1, channels == 4 ? GL_RGBA : GL_RGB, GL_UNSIGNED_BYTE);
-    const OIIO::stride_t row = static_cast<OIIO::stride_t>(image->getRowStepInBytes());
-    // Read with a negative row stride into the last row: OSG's origin is bottom-left.
-    unsigned char* last = image->data(0, spec.height - 1);
-    const int chend = std::min(spec.nchannels, channels);
-    if (!in->read_image(0, 0, 0, chend, OIIO::TypeDesc::UINT8, last, channels, -row))
-        throw std::runtime_error("cannot read image '" + path + "': " + in->geterror());
-    if (chend < channels) // grey or grey+alpha: replicate into RGB
-        for (int y = 0; y < spec.height; ++y)
-            for (int x = 0; x < spec.width; ++x)
-            {
-                unsigned char* p = image->data(x, y);
-                if (chend == 1)
-                    p[1] = p[2] = p[0];
-                else if (chend == 2)
-                    p[2] = p[1] = p[0];
-            }
-    in->close();
+    std::string error;
+    if (!imageIO().read(path.c_str(), image.get(), &error))
+        throw std::runtime_error("cannot read image '" + path + "': " + error);
     return image;
 }
 
@@ -106,20 +132,14 @@ void ImageFile::write(const std::string& path, const osg::Image& image)
     if (channels == 0 || channels == 2) // grey + alpha is read (as RGBA), not written
         throw std::runtime_error("cannot write '" + path + "': unsupported pixel format");
 #ifdef OSGLOA_WITH_OPENIMAGEIO
+    const ImageIOModule& io = imageIO();
     AtomicFile::write(path,
                       [&](const std::string& temp)
                       {
-                          auto out = OIIO::ImageOutput::create(temp);
-                          if (!out)
-                              throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
-                          OIIO::ImageSpec spec(image.s(), image.t(), channels, OIIO::TypeDesc::UINT8);
-                          if (!out->open(temp, spec))
-                              throw std::runtime_error("cannot write '" + path + "': " + out->geterror());
-                          const OIIO::stride_t row = static_cast<OIIO::stride_t>(image.getRowStepInBytes());
-                          const unsigned char* last = image.data(0, image.t() - 1);
-                          const bool ok =
-                              out->write_image(OIIO::TypeDesc::UINT8, last, channels, -row) && out->close();
-                          return ok;
+                          std::string error;
+                          if (!io.write(temp.c_str(), &image, channels, &error))
+                              throw std::runtime_error("cannot write '" + path + "': " + error);
+                          return true;
                       });
 #else
     AtomicFile::write(path, [&](const std::string& temp) { return osgDB::writeImageFile(image, temp); });

@@ -1,0 +1,69 @@
+// loa-bench case "cartographic": the cost of the cartographic devices of paper 004 §3.2.3
+// (waterlining, relief presentation) as a ratio to flat cartographic, measured in the same run on
+// the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
+// oblique and top cameras. Every frame is checked against plain rendering's coverage and kept at
+// 1920x1080 (out/bench-frames/).
+#include "BenchCase.h"
+
+#include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/ScenarioLibrary>
+
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+std::vector<Row> cartographic(unsigned frames, std::string& renderer)
+{
+    std::vector<Row> rows;
+    std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> scenes = {{"demo-city", demoCity()}};
+    const std::string block = "data/test-scenes/opencity-block.osgt";
+    if (osg::ref_ptr<osg::Node> model = osgDB::fileExists(block) ? osgDB::readRefNodeFile(block) : nullptr)
+    {
+        osg::ref_ptr<osg::Group> group = new osg::Group;
+        group->addChild(model.get());
+        osgLoA::FeatureClassifier().classify(*group);
+        scenes.push_back({"opencity-block", group});
+    }
+    else
+        std::cerr
+            << "  opencity-block: not found (run from the repository root after scripts/fetch-test-data)\n";
+    for (const auto& scene : scenes)
+        for (const std::pair<int, int>& size : {std::make_pair(1280, 720), std::make_pair(1920, 1080)})
+            for (const char* camera : {"oblique", "top"})
+            {
+                const std::string sz = std::to_string(size.first) + "x" + std::to_string(size.second);
+                osg::ref_ptr<osg::Image> plainFrame =
+                    makeRenderer(size.first, size.second, 0, scene.second.get(), camera)->renderImage();
+                double flat = 0.0;
+                for (const char* style : {"cartographic", "waterlining", "relief"})
+                {
+                    osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
+                    loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());
+                    loa->addChild(scene.second.get());
+                    auto r = makeRenderer(size.first, size.second, 0, loa.get(), camera);
+                    renderer = r->getCapabilities().renderer;
+                    Row row;
+                    row.times = r->timeFrames(frames);
+                    if (std::string(style) == "cartographic") flat = row.times.median();
+                    osg::ref_ptr<osg::Image> frame = r->renderImage();
+                    const std::string problem = checkFrame(*frame, *plainFrame, r->getSettings().clearColor);
+                    row.frameFailed = !problem.empty();
+                    std::ostringstream p;
+                    p << sz << " camera=" << camera << " scene=" << scene.first << " style=" << style
+                      << " ratio_to_cartographic=" << std::setprecision(3)
+                      << (flat > 0.0 ? row.times.median() / flat : 0.0)
+                      << " frame=" << (problem.empty() ? "ok" : "FAILED(" + problem + ")");
+                    row.parameters = p.str();
+                    if (size.first == 1920 || row.frameFailed)
+                        keepFrame(*frame,
+                                  "cartographic-" + scene.first + "-" + sz + "-" + camera + "-" + style);
+                    rows.push_back(row);
+                    std::cerr << "  " << row.parameters << ": median " << row.times.median() << " ms\n";
+                }
+            }
+    return rows;
+}
