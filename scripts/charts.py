@@ -76,6 +76,21 @@ def baseline_ratios(name, rows):
                 label = "%s %s %s%s" % (scene, camera, sc, "" if not fz else " fuse=" + fz)
                 ratios[(label, size)] = ms / h
         return ratios, "mean of homogeneous photorealistic and cartographic (same scene, camera, size, run)"
+    if name == "cartographic":
+        # Each device against flat cartographic of the same scene, camera and size (same run).
+        flat = {}
+        for r in rows:
+            p = r["parameters"]
+            get = lambda k: re.search(k + r"=(\S+)", p).group(1)
+            view = (group_of(p), get("scene"), get("camera"))
+            r["_view"], r["_style"] = view, get("style")
+            if r["_style"] == "cartographic":
+                flat[view] = r["ms"]
+        for r in rows:
+            if r["_style"] != "cartographic" and r["_view"] in flat:
+                size, scene, camera = r["_view"]
+                ratios[("%s %s %s" % (scene, camera, r["_style"]), size)] = r["ms"] / flat[r["_view"]]
+        return ratios, "flat cartographic (same scene, camera, size, run)"
     if name == "abuffer":
         # Per depth complexity K: each method against the default (stencil-routed, N=4, 4 passes)
         # at the same K; the scatter uses these ratios too.

@@ -152,6 +152,22 @@ TEST(WaterliningTest, TheShoreIsWhereTheWaterEmergesFromTheTerrain)
     EXPECT_EQ(map.sample(2, 10), 0.0f); // under the bank
 }
 
+// A small pond takes the texels its lines need, not the full resolution: a 10 m pond at the
+// default 0.1 m minimum is 100 texels across (+ 2 of margin), not 2048.
+TEST(WaterliningTest, ASmallPondTakesNoMoreTexelsThanItNeeds)
+{
+    osg::ref_ptr<osg::Group> model = new osg::Group;
+    model->addChild(feature(quad(0, 0, 10, 10).get(), 1, FeatureType::Water));
+    const Waterlining::ShoreMap map = Waterlining::computeShoreMap(*model);
+    ASSERT_TRUE(map.valid());
+    EXPECT_NEAR(map.grid.texelSize, 0.1, 1e-12);
+    EXPECT_EQ(map.grid.width, 102);
+    EXPECT_EQ(map.grid.height, 102);
+    EXPECT_NEAR(map.sample(5, 5), 5.05, 0.06);
+    // Without the floor, the full resolution.
+    EXPECT_EQ(Waterlining::computeShoreMap(*model, 2048, 0.0).grid.width, 2048);
+}
+
 TEST(WaterliningTest, AModelWithoutWaterHasNoMapAndPreparationSaysSo)
 {
     osg::ref_ptr<osg::Group> model = new osg::Group;
@@ -177,7 +193,9 @@ TEST(WaterliningTest, AModelWithoutWaterHasNoMapAndPreparationSaysSo)
     ASSERT_EQ(r.messages.size(), 1u);
     EXPECT_NE(r.messages[0].find("no water surface"), std::string::npos) << r.messages[0];
     EXPECT_FALSE(model->getStateSet() && model->getStateSet()->getUniform("loa_hasWaterDistance"));
-    EXPECT_THROW(Waterlining::computeShoreMap(*model, 1), std::invalid_argument);
+    EXPECT_THROW(Waterlining::computeShoreMap(*model, 2), std::invalid_argument);
+    EXPECT_THROW(Waterlining::computeShoreMap(*model, 64, -1.0), std::invalid_argument);
+    EXPECT_THROW(Waterlining::computeShoreMap(*model, 64, std::nan("")), std::invalid_argument);
 }
 
 TEST(WaterliningTest, PreparationBindsTheMapOnceOnTheModel)

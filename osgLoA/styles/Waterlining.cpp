@@ -95,11 +95,14 @@ float Waterlining::ShoreMap::sample(double x, double y) const
                  ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1)));
 }
 
-Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolution)
+Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolution, double minTexelSize)
 {
-    if (resolution < 2 || resolution > DistanceField::kMaxResolution)
+    if (resolution < 3 || resolution > DistanceField::kMaxResolution)
         throw std::invalid_argument("waterlining: resolution " + std::to_string(resolution) +
-                                    " is not in 2.." + std::to_string(DistanceField::kMaxResolution));
+                                    " is not in 3.." + std::to_string(DistanceField::kMaxResolution));
+    if (!std::isfinite(minTexelSize) || minTexelSize < 0.0)
+        throw std::invalid_argument("waterlining: minimum texel size " + std::to_string(minTexelSize) +
+                                    " is not finite and >= 0");
     ShoreMap map;
     FeatureIndex index(model);
     // The water features' triangles, and the terrain's: where the terrain lies above the water
@@ -139,8 +142,9 @@ Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolut
         box.expandBy(osg::Vec3d(c.x(), c.y(), 0.0));
     const double extent = std::max(box.xMax() - box.xMin(), box.yMax() - box.yMin());
     if (!(extent > 0.0) || !std::isfinite(extent)) return map;
-    // resolution - 2 texels across the footprint, one land texel of margin on each side.
-    const double texel = extent / double(resolution - 2);
+    // resolution - 2 texels across the footprint (no finer than minTexelSize), one land texel of
+    // margin on each side.
+    const double texel = std::max(extent / double(resolution - 2), minTexelSize);
     osg::BoundingBoxd area(box.xMin() - texel, box.yMin() - texel, 0.0, box.xMax() + texel,
                            box.yMax() + texel, 0.0);
     map.grid = DistanceField::Grid::cover(area, texel, resolution);
