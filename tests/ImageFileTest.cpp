@@ -1,6 +1,6 @@
 // osgLoA::ImageFile: PNG written and read back the same; OpenImageIO is loaded only when the
 // first image is read or written (its ~260 shared libraries cost a process 0.4 s at start), from
-// the module libosgLoA_imageio beside libosgLoA.
+// the module libosgLoA_imageio beside libosgLoA; GDAL is not loaded at start either.
 #include "support/TestSupport.h"
 
 #include <osgLoA/util/ImageFile>
@@ -29,6 +29,8 @@ TEST(ImageFileTest, OpenImageIOIsLoadedOnTheFirstImageAndImagesRoundTrip)
 {
     EXPECT_FALSE(mapped("libOpenImageIO")) << "linked at start";
     EXPECT_FALSE(mapped("libosgLoA_imageio"));
+    // GDAL likewise (libosgLoA_gdal, loaded by the first RegionFile::read; RegionFileTest reads).
+    EXPECT_FALSE(mapped("libgdal")) << "linked at start";
     osg::ref_ptr<osg::Image> image = new osg::Image;
     image->allocateImage(5, 3, 1, GL_RGB, GL_UNSIGNED_BYTE);
     for (int y = 0; y < 3; ++y)

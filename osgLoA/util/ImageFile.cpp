@@ -2,11 +2,7 @@
 #include <osgLoA/util/ImageFile>
 
 #ifdef OSGLOA_WITH_OPENIMAGEIO
-#include <osgDB/FileNameUtils>
-
-#include <dlfcn.h>
-
-#include <mutex>
+#include "LazyModule.h"
 #else
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
@@ -48,38 +44,16 @@ struct ImageIOModule
 {
     bool (*read)(const char*, osg::Image*, std::string*) = nullptr;
     bool (*write)(const char*, const osg::Image*, int, std::string*) = nullptr;
-    std::string error;
 };
 
-const ImageIOModule& imageIO()
+ImageIOModule imageIO()
 {
-    static ImageIOModule module;
-    static std::once_flag once;
-    std::call_once(
-        once,
-        []
-        {
-            Dl_info info;
-            std::string dir;
-            if (dladdr(reinterpret_cast<void*>(&imageIO), &info) && info.dli_fname)
-                dir = osgDB::getFilePath(info.dli_fname);
-            const std::string path = (dir.empty() ? std::string() : dir + "/") + "libosgLoA_imageio.so";
-            void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-            if (!handle)
-            {
-                const char* e = dlerror();
-                module.error = "cannot load osgLoA's image module '" + path + "': " + (e ? e : "?");
-                return;
-            }
-            module.read = reinterpret_cast<bool (*)(const char*, osg::Image*, std::string*)>(
-                dlsym(handle, "osgLoA_imageio_read"));
-            module.write = reinterpret_cast<bool (*)(const char*, const osg::Image*, int, std::string*)>(
-                dlsym(handle, "osgLoA_imageio_write"));
-            if (!module.read || !module.write)
-                module.error = "osgLoA's image module '" + path + "' lacks its functions";
-        });
-    if (!module.error.empty()) throw std::runtime_error(module.error);
-    return module;
+    ImageIOModule m;
+    m.read = reinterpret_cast<bool (*)(const char*, osg::Image*, std::string*)>(
+        lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_read"));
+    m.write = reinterpret_cast<bool (*)(const char*, const osg::Image*, int, std::string*)>(
+        lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_write"));
+    return m;
 }
 } // namespace
 
@@ -132,7 +106,7 @@ void ImageFile::write(const std::string& path, const osg::Image& image)
     if (channels == 0 || channels == 2) // grey + alpha is read (as RGBA), not written
         throw std::runtime_error("cannot write '" + path + "': unsupported pixel format");
 #ifdef OSGLOA_WITH_OPENIMAGEIO
-    const ImageIOModule& io = imageIO();
+    const ImageIOModule io = imageIO();
     AtomicFile::write(path,
                       [&](const std::string& temp)
                       {
