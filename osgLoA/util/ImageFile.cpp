@@ -46,13 +46,18 @@ struct ImageIOModule
     bool (*write)(const char*, const osg::Image*, int, std::string*) = nullptr;
 };
 
-ImageIOModule imageIO()
+const ImageIOModule& imageIO()
 {
-    ImageIOModule m;
-    m.read = reinterpret_cast<bool (*)(const char*, osg::Image*, std::string*)>(
-        lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_read"));
-    m.write = reinterpret_cast<bool (*)(const char*, const osg::Image*, int, std::string*)>(
-        lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_write"));
+    // Resolved once (a failed load throws here and is tried again on the next image).
+    static const ImageIOModule m = []
+    {
+        ImageIOModule r;
+        r.read = reinterpret_cast<bool (*)(const char*, osg::Image*, std::string*)>(
+            lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_read"));
+        r.write = reinterpret_cast<bool (*)(const char*, const osg::Image*, int, std::string*)>(
+            lazyModuleSymbol("osgLoA_imageio", "osgLoA_imageio_write"));
+        return r;
+    }();
     return m;
 }
 } // namespace
@@ -68,7 +73,8 @@ osg::ref_ptr<osg::Image> ImageFile::read(const std::string& path)
 
 #else
 // Built without OpenImageIO (OSGLOA_WITH_OPENIMAGEIO=OFF, scripts/device-bench): the formats of
-// OSG's own image plugins (osgdb_png, osgdb_jpeg, ...), converted to 8-bit RGB(A) as above.
+// OSG's own image plugins (osgdb_png, osgdb_jpeg, ...), converted to 8-bit RGB(A) as the
+// OpenImageIO module converts them (grey replicated into RGB, alpha kept).
 osg::ref_ptr<osg::Image> ImageFile::read(const std::string& path)
 {
     osg::ref_ptr<osg::Image> in = osgDB::readRefImageFile(path);
@@ -106,7 +112,7 @@ void ImageFile::write(const std::string& path, const osg::Image& image)
     if (channels == 0 || channels == 2) // grey + alpha is read (as RGBA), not written
         throw std::runtime_error("cannot write '" + path + "': unsupported pixel format");
 #ifdef OSGLOA_WITH_OPENIMAGEIO
-    const ImageIOModule io = imageIO();
+    const ImageIOModule& io = imageIO();
     AtomicFile::write(path,
                       [&](const std::string& temp)
                       {
