@@ -2,6 +2,7 @@
 #include <osgLoA/filtering/FilterCache>
 #include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/GreenSpaceSignatures>
 #include <osgLoA/styles/StylePreparation>
 #include <osgLoA/styles/TextureAbstraction>
 #include <osgLoA/styles/Waterlining>
@@ -21,7 +22,7 @@ namespace osgLoA
 
 namespace
 {
-const char* const kKnown[] = {"abstract", "palette", "waterlining"};
+const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures"};
 
 std::string join(const std::vector<std::string>& v)
 {
@@ -108,28 +109,45 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
             say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
         }
-        else if (style == "waterlining")
+        else if (style == "waterlining" || style == "signatures")
         {
+            // A map over the model's water (shoreline distance) or green features (ground).
             const auto start = std::chrono::steady_clock::now();
-            const Waterlining::ShoreMap map = Waterlining::attach(model);
-            report.waterFeatures += map.waterFeatures;
-            if (!map.valid())
+            const bool water = style == "waterlining";
+            unsigned features = 0, triangles = 0;
+            std::size_t texels = 0;
+            DistanceField::Grid grid;
+            if (water)
             {
-                const std::string line = "waterlining: the model has no water surface (" +
-                                         std::to_string(map.waterFeatures) +
-                                         " water feature(s)): water draws as cartographic";
+                const Waterlining::ShoreMap map = Waterlining::attach(model);
+                report.waterFeatures += map.waterFeatures;
+                features = map.waterFeatures, triangles = map.triangles, texels = map.waterTexels;
+                if (map.valid()) grid = map.grid;
+            }
+            else
+            {
+                const GreenSpaceSignatures::GroundMap map = GreenSpaceSignatures::attach(model);
+                features = map.greenFeatures, triangles = map.triangles, texels = map.groundTexels;
+                if (map.valid()) grid = map.grid;
+            }
+            const char* kind = water ? "water" : "green";
+            if (!grid.valid())
+            {
+                const std::string line = style + ": the model has no " + kind + " surface (" +
+                                         std::to_string(features) + " " + kind + " feature(s)): " +
+                                         (water ? "water draws as cartographic" : "no symbols are drawn");
                 OSG_WARN << "osgLoA: " << line << std::endl;
                 report.messages.push_back(line);
             }
             else
             {
-                char b[200];
+                char b[240];
                 std::snprintf(
                     b, sizeof b,
-                    "osgLoA: waterlining: shoreline map of %u water feature(s), %u triangles: %dx%d "
-                    "texels of %.3g units, %zu water, in %.1f s",
-                    map.waterFeatures, map.triangles, map.grid.width, map.grid.height, map.grid.texelSize,
-                    map.waterTexels,
+                    "osgLoA: %s: %s map of %u %s feature(s), %u triangles: %dx%d texels of %.3g "
+                    "units, %zu %s, in %.1f s",
+                    style.c_str(), water ? "shoreline" : "ground", features, kind, triangles, grid.width,
+                    grid.height, grid.texelSize, texels, water ? "water" : "on green ground",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
                 say(b);
             }

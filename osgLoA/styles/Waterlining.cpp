@@ -4,7 +4,7 @@
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/Waterlining>
 
-#include "../util/TriangleCollector.h"
+#include "../util/FeatureGroundRaster.h"
 
 #include <osg/Geode>
 #include <osg/Geometry>
@@ -104,37 +104,13 @@ Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolut
         throw std::invalid_argument("waterlining: minimum texel size " + std::to_string(minTexelSize) +
                                     " is not finite and >= 0");
     ShoreMap map;
-    FeatureIndex index(model);
     // The water features' triangles, and the terrain's: where the terrain lies above the water
     // surface the water is hidden, and the shore is where it emerges (a river's polygon reaches
     // under its banks).
-    std::vector<osg::Vec3d> corners, terrain;
-    std::set<const Feature*> features;
-    for (const FeatureIndex::Entry& e : index.entries())
-    {
-        osg::ref_ptr<osg::Node> node;
-        const FeatureType type = e.feature->getType();
-        if ((type != FeatureType::Water && type != FeatureType::Terrain) || !e.node.lock(node)) continue;
-        // A nested feature is collected with its enclosing one when that is of its type too.
-        if (e.parent >= 0 && index.entries()[std::size_t(e.parent)].feature->getType() == type) continue;
-        if (type == FeatureType::Water) features.insert(e.feature.get());
-        osg::NodePath path = index.pathOf(e);
-        if (!path.empty()) path.pop_back();
-        TriangleCollector collect(osg::computeLocalToWorld(path), osg::NodeVisitor::TRAVERSE_ALL_CHILDREN);
-        collect.setNodeMaskOverride(~0u);
-        node->accept(collect);
-        std::vector<osg::Vec3d>& out = type == FeatureType::Water ? corners : terrain;
-        const std::vector<osg::Vec3d>& c = collect.corners();
-        for (std::size_t t = 0; t + 2 < c.size(); t += 3)
-        {
-            // Walls and other faces without a ground footprint cover no texel centre.
-            const double area2 = (c[t + 1].x() - c[t].x()) * (c[t + 2].y() - c[t].y()) -
-                                 (c[t + 2].x() - c[t].x()) * (c[t + 1].y() - c[t].y());
-            if (!std::isfinite(area2) || std::fabs(area2) < 1e-12) continue;
-            out.insert(out.end(), c.begin() + std::ptrdiff_t(t), c.begin() + std::ptrdiff_t(t + 3));
-        }
-    }
-    map.waterFeatures = unsigned(features.size());
+    const FeatureTriangles waterTriangles = collectFeatureTriangles(model, FeatureType::Water);
+    const std::vector<osg::Vec3d>& corners = waterTriangles.corners;
+    const std::vector<osg::Vec3d> terrain = collectFeatureTriangles(model, FeatureType::Terrain).corners;
+    map.waterFeatures = waterTriangles.features;
     map.triangles = unsigned(corners.size() / 3);
     if (corners.empty()) return map;
     osg::BoundingBoxd box;
@@ -153,36 +129,8 @@ Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolut
     // interpolated in the triangle; -infinity where there is none.
     const double none = -std::numeric_limits<double>::infinity();
     std::vector<double> waterTop(std::size_t(g.width) * std::size_t(g.height), none), terrainTop(waterTop);
-    auto rasterize = [&](const std::vector<osg::Vec3d>& tris, std::vector<double>& top)
-    {
-        for (std::size_t t = 0; t + 2 < tris.size(); t += 3)
-        {
-            const osg::Vec2d a = g.worldToTexel(osg::Vec2d(tris[t].x(), tris[t].y())),
-                             b = g.worldToTexel(osg::Vec2d(tris[t + 1].x(), tris[t + 1].y())),
-                             c = g.worldToTexel(osg::Vec2d(tris[t + 2].x(), tris[t + 2].y()));
-            const double orient = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-            if (orient == 0.0) continue;
-            const int i0 = std::max(0, int(std::floor(std::min({a.x(), b.x(), c.x()}) - 0.5)));
-            const int i1 = std::min(g.width - 1, int(std::ceil(std::max({a.x(), b.x(), c.x()}) - 0.5)));
-            const int j0 = std::max(0, int(std::floor(std::min({a.y(), b.y(), c.y()}) - 0.5)));
-            const int j1 = std::min(g.height - 1, int(std::ceil(std::max({a.y(), b.y(), c.y()}) - 0.5)));
-            auto edge = [&](const osg::Vec2d& p, const osg::Vec2d& q, double x, double y)
-            { return ((q.x() - p.x()) * (y - p.y()) - (x - p.x()) * (q.y() - p.y())) / orient; };
-            for (int j = j0; j <= j1; ++j)
-                for (int i = i0; i <= i1; ++i)
-                {
-                    const double x = i + 0.5, y = j + 0.5;
-                    // Barycentric weights of a, b, c (each >= 0 inside).
-                    const double wa = edge(b, c, x, y), wb = edge(c, a, x, y), wc = edge(a, b, x, y);
-                    if (wa < 0 || wb < 0 || wc < 0) continue;
-                    const double z = wa * tris[t].z() + wb * tris[t + 1].z() + wc * tris[t + 2].z();
-                    double& cell = top[std::size_t(j) * std::size_t(g.width) + std::size_t(i)];
-                    cell = std::max(cell, z);
-                }
-        }
-    };
-    rasterize(corners, waterTop);
-    rasterize(terrain, terrainTop);
+    rasterizeHeights(g, corners, true, waterTop);
+    rasterizeHeights(g, terrain, true, terrainTop);
     // Water where a water surface lies at the texel and no terrain above it (by more than a
     // thousandth of the footprint: coplanar ground does not hide it).
     const double above = 1e-3 * extent;
@@ -204,22 +152,7 @@ Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolut
 
 osg::ref_ptr<osg::Texture2D> Waterlining::createTexture(const ShoreMap& map)
 {
-    osg::ref_ptr<osg::Image> image = new osg::Image;
-    image->allocateImage(map.grid.width, map.grid.height, 1, GL_RED, GL_FLOAT);
-    image->setInternalTextureFormat(GL_R32F);
-    std::copy(map.distance.begin(), map.distance.end(), reinterpret_cast<float*>(image->data()));
-    osg::ref_ptr<osg::Texture2D> texture = new osg::Texture2D(image.get());
-    texture->setName("osgLoA waterlining shore distance");
-    texture->setInternalFormat(GL_R32F);
-    texture->setSourceFormat(GL_RED);
-    texture->setSourceType(GL_FLOAT);
-    texture->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR);
-    texture->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
-    texture->setWrap(osg::Texture::WRAP_S, osg::Texture::CLAMP_TO_EDGE);
-    texture->setWrap(osg::Texture::WRAP_T, osg::Texture::CLAMP_TO_EDGE);
-    texture->setResizeNonPowerOfTwoHint(false);
-    texture->setUseHardwareMipMapGeneration(false);
-    return texture;
+    return createGridTexture(map.grid, map.distance, "osgLoA waterlining shore distance", true);
 }
 
 Waterlining::ShoreMap Waterlining::attach(osg::Node& model, int resolution)

@@ -5,6 +5,7 @@
 #include <osgLoA/compositing/StencilRoutedABuffer>
 #include <osgLoA/render/GLCapabilities>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/semantics/FeatureSubType>
 #include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/styles/GraphicStyleCatalog>
@@ -396,7 +397,16 @@ osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleS
     osg::ref_ptr<osg::Program> p = new osg::Program;
     p->setName("loa-" + (styleShader.empty() ? std::string("depth") : styleShader) + "-" + passDefine);
     addFeatureShaders(*p, !styleShader.empty());
-    if (!styleShader.empty()) p->addShader(ShaderLibrary::createShader(styleShader).get());
+    if (!styleShader.empty())
+    {
+        // The style sees the pass's defines too, so that it can tell its own draw (the shared
+        // G-buffer pass, LOA_PASS_GBUFFER_COLOR) from blends with other styles.
+        ShaderLibrary::Defines defines;
+        std::istringstream words(passDefine);
+        for (std::string w; words >> w;)
+            defines.emplace_back(w, "");
+        p->addShader(ShaderLibrary::createShader(styleShader, defines).get());
+    }
     if (routed) p->addShader(ShaderLibrary::createShader(_aBuffer->getWriteShaderName()).get());
     p->addShader(passMain(passDefine).get());
     _programs[key] = p;
@@ -605,6 +615,8 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
         ss->setDataVariance(osg::Object::DYNAMIC);
         uniform(*ss, "loa_featureType", osg::Uniform::INT)->set(int(e.feature->getType()));
+        uniform(*ss, "loa_featureSubType", osg::Uniform::INT)
+            ->set(FeatureSubType::code(e.feature->getSubType()));
         uniform(*ss, "loa_featureId", osg::Uniform::UNSIGNED_INT)->set(e.feature->getId());
         _featureState[i] = ss;
         if (osg::Node* node = e.node.get()) _opaqueMaterial[i] = inspectMaterial(*node) ? 1 : 0;
