@@ -118,10 +118,11 @@ TEST(LoaRenderTest, ListStylesPrintsEveryStyleWithItsDescription)
                              "adaptive-hybrid-pencil",
                              "palette",
                              "waterlining",
-                             "relief"})
+                             "relief",
+                             "signatures"})
         EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
                                                                             << out;
-    EXPECT_EQ(lines.size(), 22u) << out;
+    EXPECT_EQ(lines.size(), 23u) << out;
 }
 
 TEST(LoaRenderTest, HelpDocumentsEveryOption)

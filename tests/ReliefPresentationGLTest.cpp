@@ -192,52 +192,11 @@ void expectDifferenceOnTerrainOnly(const std::string& name, osg::Node* model, in
                                    double minShare)
 {
     registerVariants();
-    osg::ComputeBoundsVisitor cbv;
-    model->accept(cbv);
-    const osg::BoundingBox b = cbv.getBoundingBox();
-    const double aspect = double(width) / height;
-    const osg::Vec3d c = b.center();
-    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
-    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
-                                 c.y() + half, b.zMax());
-    const Viewport vp{0, 0, width, height};
-    osg::ref_ptr<osg::Image> relief = loatest::topDown(model, "relief", width, height, vp, view);
-    osg::ref_ptr<osg::Image> flat = loatest::topDown(model, "cartographic", width, height, vp, view);
-    osg::ref_ptr<osg::Image> mask = loatest::topDown(model, "test-terrain-mask", width, height, vp, view);
-    auto isTerrain = [&](int x, int y)
-    {
-        for (int j = std::max(0, y - 2); j <= std::min(height - 1, y + 2); ++j)
-            for (int i = std::max(0, x - 2); i <= std::min(width - 1, x + 2); ++i)
-            {
-                const unsigned char* p = mask->data(i, j);
-                // Magenta, darkened where the compositor's edges and unsharp masking lie on it.
-                if (p[0] > p[1] + 30 && p[2] > p[1] + 30 && std::abs(int(p[0]) - int(p[2])) < 30) return true;
-            }
-        return false;
-    };
-    long terrain = 0, inked = 0, outside = 0;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-        {
-            const unsigned char *p = relief->data(x, y), *q = flat->data(x, y);
-            const int diff = std::max({std::abs(int(p[0]) - int(q[0])), std::abs(int(p[1]) - int(q[1])),
-                                       std::abs(int(p[2]) - int(q[2]))});
-            if (isTerrain(x, y))
-            {
-                ++terrain;
-                inked += diff > 8;
-            }
-            else if (diff > 2)
-                ++outside;
-        }
-    std::cout << "relief " << name << " " << width << "x" << height << ": " << inked << " of " << terrain
-              << " terrain pixels inked, " << outside << " differing pixels off the terrain\n";
-    keep(*relief, name + "-" + std::to_string(width) + "x" + std::to_string(height));
-    keep(*flat, name + "-" + std::to_string(width) + "x" + std::to_string(height) + "-cartographic");
-    if (outside) keep(*mask, name + "-" + std::to_string(width) + "x" + std::to_string(height) + "-mask");
-    EXPECT_EQ(outside, 0) << name;
-    ASSERT_GT(terrain, 0) << name << ": no terrain in view";
-    EXPECT_GT(double(inked), minShare * terrain) << name;
+    const loatest::MaskedDifference d = loatest::differenceInMask(
+        model, "relief", "cartographic", "test-terrain-mask", width, height, "relief", name);
+    EXPECT_EQ(d.outside, 0) << name;
+    ASSERT_GT(d.inside, 0) << name << ": no terrain in view";
+    EXPECT_GT(double(d.changed), minShare * d.inside) << name;
 }
 } // namespace
 

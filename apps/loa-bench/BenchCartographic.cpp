@@ -1,6 +1,6 @@
 // loa-bench case "cartographic": the cost of the cartographic devices of paper 004 §3.2.3
-// (waterlining, relief presentation) as a ratio to flat cartographic, measured in the same run on
-// the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
+// (waterlining, relief presentation, green-space signatures) as a ratio to flat cartographic, measured in the
+// same run on the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
 // oblique and top cameras. Every frame is checked against plain rendering's coverage and kept at
 // 1920x1080 (out/bench-frames/).
 #include "BenchCase.h"
@@ -39,7 +39,7 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
                 osg::ref_ptr<osg::Image> plainFrame =
                     makeRenderer(size.first, size.second, 0, scene.second.get(), camera)->renderImage();
                 double flat = 0.0;
-                for (const char* style : {"cartographic", "waterlining", "relief"})
+                for (const char* style : {"cartographic", "waterlining", "relief", "signatures"})
                 {
                     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
                     loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());

@@ -10,11 +10,15 @@
 #include <osgLoA/util/ImageFile>
 
 #include <osg/BoundingBox>
+#include <osg/ComputeBoundsVisitor>
 #include <osg/Geometry>
 #include <osgDB/FileUtils>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
 #include <string>
 
 namespace loatest
@@ -96,6 +100,67 @@ inline void keepFrame(const std::string& folder, const osg::Image& image, const 
     const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/" + folder;
     osgDB::makeDirectory(dir);
     osgLoA::ImageFile::write(dir + "/" + name + ".png", image);
+}
+
+/** Pixels of a style's top-down frame that differ from another style's, inside and outside the
+ *  magenta of a mask style (a style drawing the features concerned pure magenta; grown by 2 px,
+ *  darkened magenta where edges lie on it counts): the model (or the frame given) framed whole,
+ *  orthographic. */
+struct MaskedDifference
+{
+    long inside = 0;  ///< mask pixels
+    long changed = 0; ///< of those, differing by more than 8/255 in a channel
+    long outside = 0; ///< pixels outside the mask differing by more than 2/255
+};
+inline MaskedDifference differenceInMask(osg::Node* model, const std::string& style,
+                                         const std::string& reference, const std::string& maskStyle,
+                                         int width, int height, const std::string& folder,
+                                         const std::string& name, const osg::BoundingBoxd* frame = nullptr)
+{
+    osg::ComputeBoundsVisitor cbv;
+    model->accept(cbv);
+    const osg::BoundingBoxd b = frame ? *frame : osg::BoundingBoxd(cbv.getBoundingBox());
+    const double aspect = double(width) / height;
+    const osg::Vec3d c = b.center();
+    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
+    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
+                                 c.y() + half, b.zMax());
+    const Viewport vp{0, 0, width, height};
+    osg::ref_ptr<osg::Image> styled = topDown(model, style, width, height, vp, view);
+    osg::ref_ptr<osg::Image> flat = topDown(model, reference, width, height, vp, view);
+    osg::ref_ptr<osg::Image> mask = topDown(model, maskStyle, width, height, vp, view);
+    auto inMask = [&](int x, int y)
+    {
+        for (int j = std::max(0, y - 2); j <= std::min(height - 1, y + 2); ++j)
+            for (int i = std::max(0, x - 2); i <= std::min(width - 1, x + 2); ++i)
+            {
+                const unsigned char* p = mask->data(i, j);
+                if (p[0] > p[1] + 30 && p[2] > p[1] + 30 && std::abs(int(p[0]) - int(p[2])) < 30) return true;
+            }
+        return false;
+    };
+    MaskedDifference d;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+        {
+            const unsigned char *p = styled->data(x, y), *q = flat->data(x, y);
+            const int diff = std::max({std::abs(int(p[0]) - int(q[0])), std::abs(int(p[1]) - int(q[1])),
+                                       std::abs(int(p[2]) - int(q[2]))});
+            if (inMask(x, y))
+            {
+                ++d.inside;
+                d.changed += diff > 8;
+            }
+            else if (diff > 2)
+                ++d.outside;
+        }
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    std::cout << style << " " << name << " " << size << ": " << d.changed << " of " << d.inside
+              << " pixels of the mask changed, " << d.outside << " differing pixels outside it\n";
+    keepFrame(folder, *styled, name + "-" + size);
+    keepFrame(folder, *flat, name + "-" + size + "-" + reference);
+    if (d.outside) keepFrame(folder, *mask, name + "-" + size + "-mask");
+    return d;
 }
 
 } // namespace loatest
