@@ -23,19 +23,6 @@
 #include <iostream>
 #include <sstream>
 
-namespace
-{
-double meanChange(const osg::Image& a, const osg::Image& b)
-{
-    double sum = 0.0;
-    const std::size_t n = std::size_t(a.s()) * std::size_t(a.t());
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t c = 0; c < 3; ++c)
-            sum += std::fabs(double(a.data()[i * 4 + c]) - double(b.data()[i * 4 + c]));
-    return sum / double(n * 3);
-}
-} // namespace
-
 std::vector<Row> abstraction(unsigned frames, std::string& renderer)
 {
     std::vector<Row> rows;

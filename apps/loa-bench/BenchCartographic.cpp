@@ -2,7 +2,9 @@
 // (waterlining, relief presentation, green-space signatures) as a ratio to flat cartographic, measured in the
 // same run on the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
 // oblique and top cameras. Every frame is checked against plain rendering's coverage and kept at
-// 1920x1080 (out/bench-frames/).
+// 1920x1080 (out/bench-frames/). At 1280x720 each row also measures temporal coherence along a
+// 10-frame camera turn: error_mean is the mean per-pixel change between consecutive frames (8-bit
+// units), error_max its ratio to plain rendering's on the same move.
 #include "BenchCase.h"
 
 #include <osgLoA/semantics/FeatureClassifier>
@@ -36,8 +38,12 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
             for (const char* camera : {"oblique", "top"})
             {
                 const std::string sz = std::to_string(size.first) + "x" + std::to_string(size.second);
-                osg::ref_ptr<osg::Image> plainFrame =
-                    makeRenderer(size.first, size.second, 0, scene.second.get(), camera)->renderImage();
+                auto plain = makeRenderer(size.first, size.second, 0, scene.second.get(), camera);
+                osg::ref_ptr<osg::Image> plainFrame = plain->renderImage();
+                // Temporal coherence (as the abstraction case measures it) at 1280x720: the mean
+                // per-pixel change over a 10-frame camera turn, and its ratio to plain rendering's.
+                const bool temporal = size.first == 1280;
+                const double plainChange = temporal ? temporalChange(*plain, 10) : 0.0;
                 double flat = 0.0;
                 for (const char* style : {"cartographic", "waterlining", "relief", "signatures"})
                 {
@@ -58,6 +64,15 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
                       << (flat > 0.0 ? row.times.median() / flat : 0.0)
                       << " frame=" << (problem.empty() ? "ok" : "FAILED(" + problem + ")");
                     row.parameters = p.str();
+                    if (temporal)
+                    {
+                        const double change = temporalChange(*r, 10);
+                        std::ostringstream a, b;
+                        a << std::setprecision(4) << change;
+                        b << std::setprecision(4) << (plainChange > 0.0 ? change / plainChange : 0.0);
+                        row.errorMean = a.str();
+                        row.errorMax = b.str();
+                    }
                     if (size.first == 1920 || row.frameFailed)
                         keepFrame(*frame,
                                   "cartographic-" + scene.first + "-" + sz + "-" + camera + "-" + style);

@@ -33,6 +33,15 @@ std::string checkFrame(const osg::Image& frame, const osg::Image& reference, con
  *  view) has content, and not one colour over the whole frame. Returns "" when it passes. */
 std::string checkBlocks(const osg::Image& frame, const osg::Image& reference);
 
+/** The mean per-pixel change between two frames of one size (8-bit units, over RGB): the
+ *  temporal-coherence measure of the abstraction and cartographic cases. */
+double meanChange(const osg::Image& a, const osg::Image& b);
+
+/** The mean change between consecutive frames of a camera move: `frames` frames, the renderer's
+ *  current view turned 0.25 degrees further about its look-at centre (Z up) each frame; the view is
+ *  restored afterwards. */
+double temporalChange(osgLoA::OffscreenRenderer& r, unsigned frames);
+
 /** Writes a benchmark's frame to out/bench-frames/NAME.png, to be looked at. */
 void keepFrame(const osg::Image& frame, const std::string& name);
 

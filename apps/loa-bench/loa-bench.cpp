@@ -16,6 +16,7 @@
 #include <osgLoA/util/SceneStatistics>
 
 #include <osg/Geometry>
+#include <osg/Quat>
 #include <osg/Texture>
 #include <osg/Uniform>
 #include <osgDB/FileNameUtils>
@@ -24,6 +25,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <iomanip>
@@ -400,6 +402,40 @@ osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, 
     cam.name = camera;
     loa::applyCamera(*r, cam);
     return r;
+}
+
+double meanChange(const osg::Image& a, const osg::Image& b)
+{
+    double sum = 0.0;
+    const std::size_t n = std::size_t(a.s()) * std::size_t(a.t());
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+            sum += std::fabs(double(a.data()[i * 4 + c]) - double(b.data()[i * 4 + c]));
+    return sum / double(n * 3);
+}
+
+double temporalChange(osgLoA::OffscreenRenderer& r, unsigned frames)
+{
+    const osg::Matrixd saved = r.getCamera()->getViewMatrix();
+    osg::Vec3d eye, center, up;
+    r.getCamera()->getViewMatrixAsLookAt(eye, center, up);
+    // getViewMatrixAsLookAt puts the centre at distance 1: the turn is about the vertical through
+    // the point looked at, on the ground the cameras aim at.
+    const osg::Vec3d dir = center - eye;
+    const osg::Vec3d pivot =
+        std::fabs(dir.z()) > 1e-9 && eye.z() > 0.0 ? eye + dir * (-eye.z() / dir.z()) : center;
+    double change = 0.0;
+    osg::ref_ptr<osg::Image> previous;
+    for (unsigned i = 0; i < frames; ++i)
+    {
+        const osg::Quat turn(osg::DegreesToRadians(0.25 * i), osg::Vec3d(0, 0, 1));
+        r.setViewMatrixAsLookAt(pivot + turn * (eye - pivot), pivot, turn * up);
+        osg::ref_ptr<osg::Image> img = r.renderImage();
+        if (previous) change += meanChange(*previous, *img);
+        previous = img;
+    }
+    r.getCamera()->setViewMatrix(saved);
+    return frames > 1 ? change / double(frames - 1) : 0.0;
 }
 
 osg::ref_ptr<osg::Group> withPlainProgram(osg::Node* scene)
