@@ -1,5 +1,6 @@
 // The base of the cartographic styles (paper 004 §3.2.3; docs/styles.md): one colour of a
-// qualitative ColorBrewer scheme (Brewer 1994) per feature type and flat shading (the face normal
+// qualitative ColorBrewer scheme (Brewer 1994) per feature type, or per sub-type under the
+// scenario's colour scheme, and flat shading (the face normal
 // from screen-space derivatives of the view position). CPU twin: GraphicStyle::cartographicColors,
 // GraphicStyle::lightFactor.
 uniform int loa_featureType; // osgLoA::FeatureType: 0 generic 1 building 2 street 3 water 4 green 5 terrain
@@ -12,11 +13,25 @@ uniform vec3 loa_cartographic_colors[6] = vec3[6](vec3(217.0, 217.0, 217.0) / 25
                                                   vec3(179.0, 222.0, 105.0) / 255.0,
                                                   vec3(229.0, 216.0, 189.0) / 255.0);
 uniform float loa_cartographic_ambient = 0.6;
+uniform int loa_featureSubType; // osgLoA::FeatureSubType code, per feature (0: none)
+// The scenario's colour scheme (osgLoA::ColorScheme): a colour per sub-type code, a = 1 where the
+// scheme gives one. Unset (all 0): every feature in its type's colour.
+uniform vec4 loa_cartographic_subTypeColors[64];
 
 // The feature type of this draw, 0 (generic) when out of range.
 int loa_cartographic_type()
 {
     return (loa_featureType >= 0 && loa_featureType < 6) ? loa_featureType : 0;
+}
+
+// The feature's colour: its sub-type's under the scenario's scheme, else its type's. CPU twin:
+// ColorScheme::colorOf.
+vec3 loa_cartographic_color()
+{
+    int code = loa_featureSubType;
+    if (code > 0 && code < 64 && loa_cartographic_subTypeColors[code].a > 0.5)
+        return loa_cartographic_subTypeColors[code].rgb;
+    return loa_cartographic_colors[loa_cartographic_type()];
 }
 
 // The flat-shading factor ambient + (1 - ambient) max(n.l, 0) of the face at viewPosition.

@@ -7,7 +7,7 @@
 
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
-    return vec4(loa_cartographic_colors[loa_cartographic_type()] *
+    return vec4(loa_cartographic_color() *
                     loa_cartographic_light(viewPosition, viewNormal),
                 color.a);
 }

@@ -60,7 +60,7 @@ float loa_relief_strokes(vec2 p, vec2 down, float density, float widthWorld, flo
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
     int type = loa_cartographic_type();
-    vec3 base = loa_cartographic_colors[type] * loa_cartographic_light(viewPosition, viewNormal);
+    vec3 base = loa_cartographic_color() * loa_cartographic_light(viewPosition, viewNormal);
     if (type != 5)
         return vec4(base, color.a);
     vec3 n = normalize(mat3(loa_viewToScene) * viewNormal);

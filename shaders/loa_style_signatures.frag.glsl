@@ -22,7 +22,6 @@
 
 uniform mat4 loa_viewToScene; // view -> LoA node local coordinates (loa_style.vert.glsl)
 uniform mat4 loa_sceneToView;
-uniform int loa_featureSubType; // osgLoA::FeatureSubType code, per feature
 uniform int loa_signatures_symbols[64]; // symbol per sub-type code (GreenSpaceSignatures::Symbol)
 uniform float loa_signatures_cellPixels = 10.0;
 uniform float loa_signatures_symbolPixels = 11.0;
@@ -154,7 +153,7 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
                                                                      normalize(loa_lightDirection)),
                                                                  0.0)
                              : loa_cartographic_light(viewPosition, viewNormal);
-    vec3 base = loa_cartographic_colors[type] * light;
+    vec3 base = loa_cartographic_color() * light;
     if (featureSymbol <= LOA_SIG_NONE || featureSymbol > LOA_SIG_ORCHARD || n.z < loa_signatures_minUp)
         return vec4(base, color.a);
     float a = dot(jx, jx), b = dot(jx, jy), d = dot(jy, jy);

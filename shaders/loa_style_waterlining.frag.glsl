@@ -44,7 +44,7 @@ float loa_waterlining_coverage(float d, float pixelSize)
 vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2 texCoord, vec4 color)
 {
     int type = loa_cartographic_type();
-    vec3 base = loa_cartographic_colors[type] * loa_cartographic_light(viewPosition, viewNormal);
+    vec3 base = loa_cartographic_color() * loa_cartographic_light(viewPosition, viewNormal);
     if (type != 3 || !loa_hasWaterDistance)
         return vec4(base, color.a);
     vec2 tc = scenePosition.xy * loa_waterDistanceTransform.xy + loa_waterDistanceTransform.zw;

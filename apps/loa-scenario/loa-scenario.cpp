@@ -10,6 +10,7 @@
 #include <osgLoA/interest/RegionFile>
 #include <osgLoA/semantics/ClassificationRuleSet>
 #include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/styles/ColorScheme>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -72,6 +73,10 @@ unless --force. Edits:
     description=TEXT
     focus=ID | tallest | none       the focus object of focus metrics: a feature id, or
                                     the tallest landmark of the model it is bound to
+    colors=SCHEME | none            the cartographic styles' colour scheme:
+                                    feature-types (one colour per type) or
+                                    brewer-subtypes (per sub-type: building uses,
+                                    forest and water kinds, road classes)
     interest.TYPE=V | none          interest override for a feature type (building,
                                     street, water, green, terrain, generic), V in [0,1]
     interest.ID=V | none            interest override for one feature id
@@ -413,6 +418,9 @@ void showText(const Loaded& l)
                   : s.getFocusTallestLandmark() ? std::string("the tallest landmark (chosen per model)")
                                                 : std::string("none"))
               << "\n";
+    std::cout << "colour scheme: "
+              << (s.getColorScheme().empty() ? std::string("none (one colour per type)") : s.getColorScheme())
+              << "\n";
     bool relative = s.getFocusFeature() == 0 && s.getFocusTallestLandmark();
     for (const auto& r : s.getRegions())
         relative = relative || (r.valid() && !r->isResolved());
@@ -497,7 +505,7 @@ void showJson(const Loaded& l)
         o << "null";
     o << ",\n  \"focus\": " << s.getFocusFeature()
       << ", \"focus-tallest-landmark\": " << (s.getFocusTallestLandmark() ? "true" : "false")
-      << ",\n  \"regions\": [";
+      << ", \"color-scheme\": " << jstr(s.getColorScheme()) << ",\n  \"regions\": [";
     bool first = true;
     for (const auto& r : s.getRegions())
     {
@@ -768,6 +776,13 @@ struct Editor
         {
             scenario.setFocusTallestLandmark(lowered == "tallest");
             scenario.setFocusFeature(lowered == "none" || lowered == "tallest" ? 0u : featureId(key, value));
+        }
+        else if (key == "colors")
+        {
+            if (lowered != "none" && !osgLoA::ColorScheme::find(lowered))
+                throw loa::UsageError("colors=" + value + ": not a colour scheme (" + osgLoA::ColorScheme::names() +
+                                      ", or none)");
+            scenario.setColorScheme(lowered == "none" ? std::string() : lowered);
         }
         else if (key == "interest" && !haveConfiguration)
         {

@@ -6,6 +6,7 @@
 #include <osgLoA/render/GLCapabilities>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureSubType>
+#include <osgLoA/styles/ColorScheme>
 #include <osgLoA/styles/FixedFunctionUniforms>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/styles/GraphicStyleCatalog>
@@ -600,6 +601,11 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         _passStates->addChild(holder.get());
     }
     LandmarkDeformation::applyScenario(*_common, scenario->getLandmarkDeformation());
+    // The scenario's colour scheme for every cartographic style (none: all sub-types unset).
+    {
+        const ColorScheme::Scheme* scheme = ColorScheme::find(scenario->getColorScheme());
+        _common->addUniform(ColorScheme::uniform(scheme ? *scheme : ColorScheme::schemes().front()).get());
+    }
 
     // Features: per-feature state, the ping-pong routing, opaque materials, callbacks.
     const auto& features = evaluator.features();

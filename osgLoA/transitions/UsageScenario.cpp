@@ -1,4 +1,5 @@
 // UsageScenario: interest overrides, ordered configurations, regions and focus; validation.
+#include <osgLoA/styles/ColorScheme>
 #include <osgLoA/transitions/UsageScenario>
 
 #include <algorithm>
@@ -19,7 +20,8 @@ UsageScenario::UsageScenario(const UsageScenario& other, const osg::CopyOp& copy
       _focusFeature(other._focusFeature), _focusTallestLandmark(other._focusTallestLandmark),
       _landmarkDeformation(other._landmarkDeformation.valid()
                                ? static_cast<LandmarkDeformation*>(copyop(other._landmarkDeformation.get()))
-                               : nullptr)
+                               : nullptr),
+      _colorScheme(other._colorScheme)
 {
     for (const auto& c : other._configurations)
         _configurations.push_back(c.valid() ? static_cast<TransitionConfiguration*>(copyop(c.get()))
@@ -79,6 +81,8 @@ UsageScenario::Validation UsageScenario::validate() const
         const std::string e = _landmarkDeformation->validate();
         if (!e.empty()) v.errors.push_back("landmark deformation: " + e);
     }
+    if (!_colorScheme.empty() && !ColorScheme::find(_colorScheme))
+        v.errors.push_back("colour scheme '" + _colorScheme + "' is not one of " + ColorScheme::names());
     std::set<std::string> names;
     std::set<FeatureType> drawn;
     for (const auto& c : _configurations)

@@ -61,13 +61,13 @@ inline osg::ref_ptr<osg::Node> asFeature(osg::Node* child, unsigned id, osgLoA::
 }
 
 /** The model drawn top-down (orthographic from above view's z range, north up) over view's x/y
- *  through a LoA node whose scenario draws everything in `style`; with an offset viewport the whole
- *  target is drawn once first (what stays outside it). */
-inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, const std::string& style, int width, int height,
-                                        const Viewport& vp, const osg::BoundingBoxd& view)
+ *  through a LoA node with this scenario; with an offset viewport the whole target is drawn once
+ *  first (what stays outside it). */
+inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, osgLoA::UsageScenario* scenario, int width,
+                                        int height, const Viewport& vp, const osg::BoundingBoxd& view)
 {
     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
-    loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());
+    loa->setScenario(scenario);
     loa->addChild(model);
     osgLoA::OffscreenRenderer::Settings s;
     s.width = width;
@@ -90,8 +90,15 @@ inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, const std::string& sty
     }
     pose();
     osg::ref_ptr<osg::Image> image = r->renderImage();
-    EXPECT_EQ(loa->getBindError(), "") << style;
+    EXPECT_EQ(loa->getBindError(), "");
     return image;
+}
+
+/** The same, through a scenario that draws everything in `style`. */
+inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, const std::string& style, int width, int height,
+                                        const Viewport& vp, const osg::BoundingBoxd& view)
+{
+    return topDown(model, osgLoA::ScenarioLibrary::createHomogeneous(style).get(), width, height, vp, view);
 }
 
 /** Writes a frame a test made into the build's test-output/<folder>/<name>.png, to look at. */

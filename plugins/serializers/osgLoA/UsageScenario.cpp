@@ -19,4 +19,5 @@ REGISTER_OBJECT_WRAPPER(osgLoA_UsageScenario, new osgLoA::UsageScenario, osgLoA:
     // Last, so that text files written before it read as before (no deformation).
     ADD_CHECKED_OBJECT_SERIALIZER(LandmarkDeformation, osgLoA::LandmarkDeformation, NULL);
     ADD_BOOL_SERIALIZER(FocusTallestLandmark, false); // issue 18: after the older fields
+    ADD_STRING_SERIALIZER(ColorScheme, "");           // issue 19: after the older fields
 }
