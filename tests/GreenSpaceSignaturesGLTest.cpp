@@ -52,14 +52,10 @@ void registerMask()
     GraphicStyleCatalog::instance().add(*mask);
 }
 
-/** A green feature of this sub-type over [x0, x1] x [y0, y1] at z. */
-osg::ref_ptr<osg::Node> green(const std::string& subType, double x0, double y0, double x1, double y1,
-                              double z = 0)
+/** A green feature of this sub-type over [x0, x1] x [y0, y1]. */
+osg::ref_ptr<osg::Node> green(const std::string& subType, double x0, double y0, double x1, double y1)
 {
-    osg::ref_ptr<osg::Group> g = new osg::Group;
-    g->addChild(loatest::planeQuad(x0, y0, x1, y1, 0, 0, z).get());
-    Feature::attach(*g, new Feature(1, FeatureType::Green, subType));
-    return g;
+    return loatest::featureQuad(1, FeatureType::Green, subType, x0, y0, x1, y1);
 }
 
 int maxChannelDiff(const osg::Image& a, const osg::Image& b, int x, int y)

@@ -119,10 +119,11 @@ TEST(LoaRenderTest, ListStylesPrintsEveryStyleWithItsDescription)
                              "palette",
                              "waterlining",
                              "relief",
-                             "signatures"})
+                             "signatures",
+                             "streets"})
         EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
                                                                             << out;
-    EXPECT_EQ(lines.size(), 23u) << out;
+    EXPECT_EQ(lines.size(), 24u) << out;
 }
 
 TEST(LoaRenderTest, HelpDocumentsEveryOption)

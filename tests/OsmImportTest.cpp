@@ -753,6 +753,7 @@ TEST(OsmImportTest, RoadRibbonAreaIsLengthTimesWidth)
     // Mitered right angle of a 2 m path: centre line length x width.
     EXPECT_NEAR(drawableArea(e4->node.get(), "TrafficArea"), (len + 50.0) * 2.0, 0.01 * 300.0);
     EXPECT_EQ(e1->feature->getSubType(), "minor");
+    EXPECT_EQ(e4->feature->getSubType(), "path"); // highway=footway
     EXPECT_EQ(e2->feature->getSubType(), "major");
     EXPECT_EQ(e2->feature->getSourceType(), "highway=primary");
     // Roads lie above the ground (flat at 0), by the draping offset.

@@ -1,5 +1,5 @@
 // loa-bench case "cartographic": the cost of the cartographic devices of paper 004 §3.2.3
-// (waterlining, relief presentation, green-space signatures) as a ratio to flat cartographic, measured in the
+// (waterlining, relief presentation, green-space signatures, streets) as a ratio to flat cartographic, measured in the
 // same run on the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
 // oblique and top cameras. Every frame is checked against plain rendering's coverage and kept at
 // 1920x1080 (out/bench-frames/). At 1280x720 each row also measures temporal coherence along a
@@ -45,7 +45,7 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
                 const bool temporal = size.first == 1280;
                 const double plainChange = temporal ? temporalChange(*plain, 10) : 0.0;
                 double flat = 0.0;
-                for (const char* style : {"cartographic", "waterlining", "relief", "signatures"})
+                for (const char* style : {"cartographic", "waterlining", "relief", "signatures", "streets"})
                 {
                     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
                     loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());

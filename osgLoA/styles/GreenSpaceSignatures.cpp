@@ -255,26 +255,14 @@ float GreenSpaceSignatures::GroundMap::at(double x, double y) const
 GreenSpaceSignatures::GroundMap GreenSpaceSignatures::computeGroundMap(osg::Node& model, int resolution,
                                                                        double minTexelSize)
 {
-    if (resolution < 3 || resolution > DistanceField::kMaxResolution)
-        throw std::invalid_argument("signatures: resolution " + std::to_string(resolution) +
-                                    " is not in 3.." + std::to_string(DistanceField::kMaxResolution));
-    if (!std::isfinite(minTexelSize) || minTexelSize < 0.0)
-        throw std::invalid_argument("signatures: minimum texel size " + std::to_string(minTexelSize) +
-                                    " is not finite and >= 0");
+    checkGridParameters("signatures", resolution, minTexelSize);
     GroundMap map;
     const FeatureTriangles green = collectFeatureTriangles(model, FeatureType::Green);
     map.greenFeatures = green.features;
     map.triangles = unsigned(green.corners.size() / 3);
     if (green.corners.empty()) return map;
-    osg::BoundingBoxd box;
-    for (const osg::Vec3d& c : green.corners)
-        box.expandBy(osg::Vec3d(c.x(), c.y(), 0.0));
-    const double extent = std::max(box.xMax() - box.xMin(), box.yMax() - box.yMin());
-    if (!(extent > 0.0) || !std::isfinite(extent)) return map;
-    const double texel = std::max(extent / double(resolution - 2), minTexelSize);
-    const osg::BoundingBoxd area(box.xMin() - texel, box.yMin() - texel, 0.0, box.xMax() + texel,
-                                 box.yMax() + texel, 0.0);
-    map.grid = DistanceField::Grid::cover(area, texel, resolution);
+    map.grid = footprintGrid(green.corners, resolution, minTexelSize);
+    if (!map.grid.valid()) return map;
     const double none = std::numeric_limits<double>::infinity();
     std::vector<double> lowest(std::size_t(map.grid.width) * std::size_t(map.grid.height), none);
     rasterizeHeights(map.grid, green.corners, false, lowest);

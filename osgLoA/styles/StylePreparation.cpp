@@ -3,6 +3,7 @@
 #include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/GreenSpaceSignatures>
+#include <osgLoA/styles/StreetPresentation>
 #include <osgLoA/styles/StylePreparation>
 #include <osgLoA/styles/TextureAbstraction>
 #include <osgLoA/styles/Waterlining>
@@ -22,7 +23,7 @@ namespace osgLoA
 
 namespace
 {
-const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures"};
+const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures", "streets"};
 
 std::string join(const std::vector<std::string>& v)
 {
@@ -109,11 +110,12 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
             say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
         }
-        else if (style == "waterlining" || style == "signatures")
+        else if (style == "waterlining" || style == "signatures" || style == "streets")
         {
-            // A map over the model's water (shoreline distance) or green features (ground).
+            // A map over the model's water (shoreline distance), green features (ground) or
+            // streets (edge distance).
             const auto start = std::chrono::steady_clock::now();
-            const bool water = style == "waterlining";
+            const bool water = style == "waterlining", green = style == "signatures";
             unsigned features = 0, triangles = 0;
             std::size_t texels = 0;
             DistanceField::Grid grid;
@@ -124,18 +126,26 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
                 features = map.waterFeatures, triangles = map.triangles, texels = map.waterTexels;
                 if (map.valid()) grid = map.grid;
             }
-            else
+            else if (green)
             {
                 const GreenSpaceSignatures::GroundMap map = GreenSpaceSignatures::attach(model);
                 features = map.greenFeatures, triangles = map.triangles, texels = map.groundTexels;
                 if (map.valid()) grid = map.grid;
             }
-            const char* kind = water ? "water" : "green";
+            else
+            {
+                const StreetPresentation::StreetMap map = StreetPresentation::attach(model);
+                features = map.streetFeatures, triangles = map.triangles, texels = map.streetTexels;
+                if (map.valid()) grid = map.grid;
+            }
+            const char* kind = water ? "water" : green ? "green" : "street";
             if (!grid.valid())
             {
                 const std::string line = style + ": the model has no " + kind + " surface (" +
                                          std::to_string(features) + " " + kind + " feature(s)): " +
-                                         (water ? "water draws as cartographic" : "no symbols are drawn");
+                                         (water   ? "water draws as cartographic"
+                                          : green ? "no symbols are drawn"
+                                                  : "streets draw without casings");
                 OSG_WARN << "osgLoA: " << line << std::endl;
                 report.messages.push_back(line);
             }
@@ -146,8 +156,14 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
                     b, sizeof b,
                     "osgLoA: %s: %s map of %u %s feature(s), %u triangles: %dx%d texels of %.3g "
                     "units, %zu %s, in %.1f s",
-                    style.c_str(), water ? "shoreline" : "ground", features, kind, triangles, grid.width,
-                    grid.height, grid.texelSize, texels, water ? "water" : "on green ground",
+                    style.c_str(),
+                    water   ? "shoreline"
+                    : green ? "ground"
+                            : "edge-distance",
+                    features, kind, triangles, grid.width, grid.height, grid.texelSize, texels,
+                    water   ? "water"
+                    : green ? "on green ground"
+                            : "on streets",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
                 say(b);
             }

@@ -83,26 +83,12 @@ double Waterlining::lineCoverage(double d, double pixelSize, const Lines& lines)
 float Waterlining::ShoreMap::sample(double x, double y) const
 {
     if (!valid()) return std::numeric_limits<float>::infinity();
-    // GL_LINEAR with clamp-to-edge: texel centres at i + 0.5.
-    const osg::Vec2d t = grid.worldToTexel(osg::Vec2d(x, y)) - osg::Vec2d(0.5, 0.5);
-    const double fx = std::clamp(t.x(), 0.0, double(grid.width - 1));
-    const double fy = std::clamp(t.y(), 0.0, double(grid.height - 1));
-    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    const int x1 = std::min(x0 + 1, grid.width - 1), y1 = std::min(y0 + 1, grid.height - 1);
-    const double ax = fx - x0, ay = fy - y0;
-    auto at = [&](int i, int j) { return double(distance[std::size_t(j) * std::size_t(grid.width) + i]); };
-    return float((1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) +
-                 ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1)));
+    return sampleBilinear(grid, distance, x, y);
 }
 
 Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolution, double minTexelSize)
 {
-    if (resolution < 3 || resolution > DistanceField::kMaxResolution)
-        throw std::invalid_argument("waterlining: resolution " + std::to_string(resolution) +
-                                    " is not in 3.." + std::to_string(DistanceField::kMaxResolution));
-    if (!std::isfinite(minTexelSize) || minTexelSize < 0.0)
-        throw std::invalid_argument("waterlining: minimum texel size " + std::to_string(minTexelSize) +
-                                    " is not finite and >= 0");
+    checkGridParameters("waterlining", resolution, minTexelSize);
     ShoreMap map;
     // The water features' triangles, and the terrain's: where the terrain lies above the water
     // surface the water is hidden, and the shore is where it emerges (a river's polygon reaches
@@ -113,17 +99,11 @@ Waterlining::ShoreMap Waterlining::computeShoreMap(osg::Node& model, int resolut
     map.waterFeatures = waterTriangles.features;
     map.triangles = unsigned(corners.size() / 3);
     if (corners.empty()) return map;
-    osg::BoundingBoxd box;
-    for (const osg::Vec3d& c : corners)
-        box.expandBy(osg::Vec3d(c.x(), c.y(), 0.0));
-    const double extent = std::max(box.xMax() - box.xMin(), box.yMax() - box.yMin());
-    if (!(extent > 0.0) || !std::isfinite(extent)) return map;
     // resolution - 2 texels across the footprint (no finer than minTexelSize), one land texel of
     // margin on each side.
-    const double texel = std::max(extent / double(resolution - 2), minTexelSize);
-    osg::BoundingBoxd area(box.xMin() - texel, box.yMin() - texel, 0.0, box.xMax() + texel,
-                           box.yMax() + texel, 0.0);
-    map.grid = DistanceField::Grid::cover(area, texel, resolution);
+    double extent = 0.0;
+    map.grid = footprintGrid(corners, resolution, minTexelSize, &extent);
+    if (!map.grid.valid()) return map;
     const DistanceField::Grid& g = map.grid;
     // The highest water and terrain surface at each texel centre (closed triangles: edges count),
     // interpolated in the triangle; -infinity where there is none.

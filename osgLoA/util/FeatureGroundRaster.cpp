@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 namespace osgLoA
 {
@@ -26,6 +28,7 @@ FeatureTriangles collectFeatureTriangles(osg::Node& model, FeatureType type)
         // A nested feature is collected with its enclosing one when that is of its type too.
         if (e.parent >= 0 && index.entries()[std::size_t(e.parent)].feature->getType() == type) continue;
         features.insert(e.feature.get());
+        out.parts.push_back({node, out.corners.size()});
         osg::NodePath path = index.pathOf(e);
         if (!path.empty()) path.pop_back();
         TriangleCollector collect(osg::computeLocalToWorld(path), osg::NodeVisitor::TRAVERSE_ALL_CHILDREN);
@@ -44,6 +47,31 @@ FeatureTriangles collectFeatureTriangles(osg::Node& model, FeatureType type)
     }
     out.features = unsigned(features.size());
     return out;
+}
+
+void checkGridParameters(const char* who, int resolution, double minTexelSize)
+{
+    if (resolution < 3 || resolution > DistanceField::kMaxResolution)
+        throw std::invalid_argument(std::string(who) + ": resolution " + std::to_string(resolution) +
+                                    " is not in 3.." + std::to_string(DistanceField::kMaxResolution));
+    if (!std::isfinite(minTexelSize) || minTexelSize < 0.0)
+        throw std::invalid_argument(std::string(who) + ": minimum texel size " +
+                                    std::to_string(minTexelSize) + " is not finite and >= 0");
+}
+
+DistanceField::Grid footprintGrid(const std::vector<osg::Vec3d>& corners, int resolution, double minTexelSize,
+                                  double* extentOut)
+{
+    osg::BoundingBoxd box;
+    for (const osg::Vec3d& c : corners)
+        box.expandBy(osg::Vec3d(c.x(), c.y(), 0.0));
+    const double extent = box.valid() ? std::max(box.xMax() - box.xMin(), box.yMax() - box.yMin()) : 0.0;
+    if (extentOut) *extentOut = extent;
+    if (!(extent > 0.0) || !std::isfinite(extent)) return DistanceField::Grid();
+    const double texel = std::max(extent / double(resolution - 2), minTexelSize);
+    const osg::BoundingBoxd area(box.xMin() - texel, box.yMin() - texel, 0.0, box.xMax() + texel,
+                                 box.yMax() + texel, 0.0);
+    return DistanceField::Grid::cover(area, texel, resolution);
 }
 
 void rasterizeHeights(const DistanceField::Grid& g, const std::vector<osg::Vec3d>& tris, bool highest,
@@ -74,6 +102,20 @@ void rasterizeHeights(const DistanceField::Grid& g, const std::vector<osg::Vec3d
                 cell = highest ? std::max(cell, z) : std::min(cell, z);
             }
     }
+}
+
+float sampleBilinear(const DistanceField::Grid& grid, const std::vector<float>& values, double x, double y)
+{
+    const osg::Vec2d t = grid.worldToTexel(osg::Vec2d(x, y)) - osg::Vec2d(0.5, 0.5);
+    const double fx = std::clamp(t.x(), 0.0, double(grid.width - 1));
+    const double fy = std::clamp(t.y(), 0.0, double(grid.height - 1));
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const int x1 = std::min(x0 + 1, grid.width - 1), y1 = std::min(y0 + 1, grid.height - 1);
+    const double ax = fx - x0, ay = fy - y0;
+    auto at = [&](int i, int j)
+    { return double(values[std::size_t(j) * std::size_t(grid.width) + std::size_t(i)]); };
+    return float((1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) +
+                 ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1)));
 }
 
 osg::ref_ptr<osg::Texture2D> createGridTexture(const DistanceField::Grid& grid,

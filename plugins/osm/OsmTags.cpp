@@ -129,6 +129,14 @@ double highwayWidth(const std::string& h)
     return 0.0; // proposed, construction, platform, corridor, raceway, ...: not a road here
 }
 
+std::string roadClass(const std::string& h, bool major)
+{
+    if (major) return "major";
+    if (oneOf(h, {"footway", "path", "cycleway", "steps", "pedestrian", "bridleway"})) return "path";
+    if (h == "track") return "track";
+    return "minor";
+}
+
 bool isMajorHighway(const std::string& h)
 {
     return oneOf(h, {"motorway", "motorway_link", "trunk", "trunk_link", "primary", "primary_link",
@@ -211,7 +219,7 @@ Classification classifyArea(const Tags& tags)
         c.kind = Kind::RoadArea;
         c.type = osgLoA::FeatureType::Street;
         c.major = isMajorHighway(highway);
-        c.subType = c.major ? "major" : "minor";
+        c.subType = roadClass(highway, c.major);
         c.sourceType = "highway=" + highway;
     }
     return c;
@@ -227,7 +235,7 @@ Classification classifyLine(const Tags& tags)
         c.kind = Kind::Road;
         c.type = osgLoA::FeatureType::Street;
         c.major = isMajorHighway(highway);
-        c.subType = c.major ? "major" : "minor";
+        c.subType = roadClass(highway, c.major);
         c.sourceType = "highway=" + highway;
         c.width = widthTagOr(tags, hw);
         return c;

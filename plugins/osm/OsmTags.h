@@ -56,6 +56,10 @@ Classification classifyPoint(const Tags& tags);
 double highwayWidth(const std::string& highway);
 /** motorway, trunk, primary, secondary and their _link roads. */
 bool isMajorHighway(const std::string& highway);
+/** The street sub-type of a highway class (the road hierarchy of the cartographic "streets"
+ *  style): "major" (isMajorHighway), "path" (footway, path, cycleway, steps, pedestrian,
+ *  bridleway), "track", else "minor". */
+std::string roadClass(const std::string& highway, bool major);
 /** Width in metres of a waterway line class; 0 for classes that are not imported. */
 double waterwayWidth(const std::string& waterway);
 

@@ -60,6 +60,17 @@ inline osg::ref_ptr<osg::Node> asFeature(osg::Node* child, unsigned id, osgLoA::
     return g;
 }
 
+/** A quad over [x0, x1] x [y0, y1] (z = 0) under a group carrying a Feature of this id, type
+ *  and sub-type. */
+inline osg::ref_ptr<osg::Node> featureQuad(unsigned id, osgLoA::FeatureType type, const std::string& subType,
+                                           double x0, double y0, double x1, double y1)
+{
+    osg::ref_ptr<osg::Group> g = new osg::Group;
+    g->addChild(planeQuad(x0, y0, x1, y1).get());
+    osgLoA::Feature::attach(*g, new osgLoA::Feature(id, type, subType));
+    return g;
+}
+
 /** The model drawn top-down (orthographic from above view's z range, north up) over view's x/y
  *  through a LoA node with this scenario; with an offset viewport the whole target is drawn once
  *  first (what stays outside it). */
