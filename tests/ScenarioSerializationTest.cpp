@@ -841,7 +841,7 @@ TEST(ScenarioSerializationTest, LoadByNameByPathAndUnknownNames)
     {
         EXPECT_EQ(
             std::string(e.what()),
-            "no scenario named 'nowhere' (known: blueprint, circular-roi, distance, extra, manual, route, "
+            "no scenario named 'nowhere' (known: blueprint, circular-roi, distance, extra, landscape, manual, route, "
             "view-angle)");
     }
     loatest::setFilePath("");

@@ -133,7 +133,7 @@ osg::ref_ptr<UsageScenario> makeScenario(const std::string& name, const std::str
 
 std::vector<std::string> ScenarioLibrary::builtinNames()
 {
-    return {"manual", "distance", "view-angle", "route", "circular-roi", "blueprint"};
+    return {"manual", "distance", "view-angle", "route", "circular-roi", "blueprint", "landscape"};
 }
 
 osg::ref_ptr<UsageScenario> ScenarioLibrary::createHomogeneous(const std::string& style)
@@ -261,6 +261,51 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         osg::ref_ptr<M> focus = new M(M::FOCUS, 0.03, 0.08);
         focus->setScale(M::SCENE);
         addTwoLevels(*s, {focus}, "blueprint", "photorealistic", 0.0f, 1.0f);
+        return s;
+    }
+    if (name == "landscape")
+    {
+        // Figure 9F: a landscape read as a map, each feature type in its cartographic device
+        // (§3.2.3), detail near the camera.
+        auto s = makeScenario(
+            name,
+            "Landscape map (paper 004 Figure 9F): photorealistic near the camera, fading smoothly into a "
+            "map between 0.75 D and 1.1 D, where D is the camera's distance to the centre of the scene: "
+            "terrain as relief (slope lines, shadowed hachures, form lines), water with waterlines, "
+            "green spaces with vegetation signatures, streets as on a road map, buildings in the "
+            "brewer-subtypes colours.");
+        s->setColorScheme("brewer-subtypes");
+        osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.75, 1.1);
+        distance->setScale(M::VIEW);
+        const BlendFunction detailed(0.0f, 1.0f, 1.0f, 1.0f), map(0.0f, 0.0f, 0.0f, 1.0f);
+        struct Part
+        {
+            const char* name;
+            const char* style;
+            TransitionConfiguration::FeatureTypes types;
+            TransitionConfiguration::Interpolation mode;
+            const BlendFunction& blend;
+        };
+        const Part parts[] = {
+            {"photorealistic-objects", "photorealistic", kObjectTypes, TransitionConfiguration::OBJECT,
+             detailed},
+            {"photorealistic-areas", "photorealistic", kAreaTypes, TransitionConfiguration::FRAGMENT,
+             detailed},
+            {"cartographic-objects", "cartographic", kObjectTypes, TransitionConfiguration::OBJECT, map},
+            {"relief-terrain", "relief", {FeatureType::Terrain}, TransitionConfiguration::FRAGMENT, map},
+            {"waterlining-water",
+             "waterlining",
+             {FeatureType::Water},
+             TransitionConfiguration::FRAGMENT,
+             map},
+            {"signatures-green", "signatures", {FeatureType::Green}, TransitionConfiguration::FRAGMENT, map},
+            {"streets-streets", "streets", {FeatureType::Street}, TransitionConfiguration::FRAGMENT, map}};
+        for (const Part& p : parts)
+        {
+            auto c = config(p.name, p.style, p.types, p.mode, p.blend);
+            c->addMetric(osg::clone(distance.get(), osg::CopyOp::DEEP_COPY_ALL));
+            s->addConfiguration(c.get());
+        }
         return s;
     }
     throw ScenarioError("unknown built-in scenario '" + name + "'");
