@@ -139,11 +139,56 @@ def pareto(points):
     return sorted(front, key=lambda i: points[i][0])
 
 
+def save(fig, out):
+    """Lays the figure out and writes it atomically (a temporary file, then a rename)."""
+    with __import__("warnings").catch_warnings():
+        __import__("warnings").simplefilter("ignore")
+        fig.tight_layout()
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=90)
+    plt.close(fig)
+    os.replace(tmp, out)
+    return True
+
+
+def draw_saliency(rows, out):
+    """Paper 004 Figure 10 as a number: per scene and size, each scenario's share of the saliency
+    mass inside its region of interest, photorealistic against the scenario, and the region's area."""
+    machine = rows[0]["machine"]
+    get = lambda p, k: re.search(k + r"=(\S+)", p).group(1)
+    panels = list(dict.fromkeys((get(r["parameters"], "scene"), group_of(r["parameters"])) for r in rows))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(11, 3.2 * len(panels)), squeeze=False)
+    for ax, (scene, size) in zip(axes[:, 0], panels):
+        sel = [r for r in rows if get(r["parameters"], "scene") == scene and group_of(r["parameters"]) == size]
+        names = [get(r["parameters"], "scenario") for r in sel]
+        ys = range(len(sel))
+        area = [float(get(r["parameters"], "roi_area")) for r in sel]
+        photo = [float(get(r["parameters"], "share_photorealistic")) for r in sel]
+        loa = [float(get(r["parameters"], "share_scenario")) for r in sel]
+        ax.barh([y - 0.27 for y in ys], area, height=0.25, color="#d9d9d9", label="region's share of the frame")
+        ax.barh([y for y in ys], photo, height=0.25, color="#80b1d3", label="saliency inside, photorealistic")
+        ax.barh([y + 0.27 for y in ys], loa, height=0.25, color="#fb8072", label="saliency inside, the scenario")
+        for y, a, b in zip(ys, photo, loa):
+            ax.text(max(a, b), y + 0.27, "  x%.2f" % (b / a if a > 0 else 0), va="center", fontsize=7)
+        ax.set_yticks(list(ys))
+        ax.set_yticklabels(names, fontsize=8)
+        ax.invert_yaxis()
+        ax.set_xlim(0, 1)
+        ax.set_title("%s %s" % (scene, size), fontsize=9)
+        ax.grid(axis="x", alpha=0.3)
+    axes[0, 0].legend(fontsize=7, loc="lower right")
+    axes[-1, 0].set_xlabel("share (spectral-residual saliency mass inside the region of interest; x = scenario / photorealistic)")
+    fig.suptitle("saliency: paper 004 Figure 10 as a number\n%s" % machine, fontsize=9)
+    return save(fig, out)
+
+
 def draw(path, out):
     rows = rows_of(path)
     if not rows:
         return False
     name = os.path.basename(path)[:-4]
+    if name == "saliency":
+        return draw_saliency(rows, out)
     machine = rows[0]["machine"]
     ratios, base = baseline_ratios(name, rows)
     labels = list(dict.fromkeys(k[0] for k in ratios))
@@ -200,14 +245,7 @@ def draw(path, out):
         ax2.set_title("%s: speed against accuracy (every row)" % name, fontsize=9)
         ax2.legend(fontsize=7, ncol=2)
         ax2.grid(alpha=0.3, which="both")
-    with __import__("warnings").catch_warnings():
-        __import__("warnings").simplefilter("ignore")
-        fig.tight_layout()
-    tmp = out + ".tmp.png"
-    fig.savefig(tmp, dpi=90)
-    plt.close(fig)
-    os.replace(tmp, out)
-    return True
+    return save(fig, out)
 
 
 def main():

@@ -1,8 +1,8 @@
 // loa-bench case "cartographic": the cost of the cartographic devices of paper 004 §3.2.3
-// (waterlining, relief presentation, green-space signatures, streets) as a ratio to flat cartographic, measured in the
-// same run on the same views: the demo city and the real OpenCity block, at 1280x720 and 1920x1080, from the
-// oblique and top cameras. Every frame is checked against plain rendering's coverage and kept at
-// 1920x1080 (out/bench-frames/). At 1280x720 each row also measures temporal coherence along a
+// (waterlining, relief presentation, green-space signatures, streets) as a ratio to flat cartographic,
+// measured in the same run on the same views: the demo city and the real OpenCity block, at 1280x720 and
+// 1920x1080, from the oblique and top cameras. Every frame is checked against plain rendering's coverage and
+// kept at 1920x1080 (out/bench-frames/). At 1280x720 each row also measures temporal coherence along a
 // 10-frame camera turn: error_mean is the mean per-pixel change between consecutive frames (8-bit
 // units), error_max its ratio to plain rendering's on the same move.
 #include "BenchCase.h"
@@ -21,18 +21,7 @@
 std::vector<Row> cartographic(unsigned frames, std::string& renderer)
 {
     std::vector<Row> rows;
-    std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> scenes = {{"demo-city", demoCity()}};
-    const std::string block = "data/test-scenes/opencity-block.osgt";
-    if (osg::ref_ptr<osg::Node> model = osgDB::fileExists(block) ? osgDB::readRefNodeFile(block) : nullptr)
-    {
-        osg::ref_ptr<osg::Group> group = new osg::Group;
-        group->addChild(model.get());
-        osgLoA::FeatureClassifier().classify(*group);
-        scenes.push_back({"opencity-block", group});
-    }
-    else
-        std::cerr
-            << "  opencity-block: not found (run from the repository root after scripts/fetch-test-data)\n";
+    const std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> scenes = demoCityAndOpenCityBlock();
     for (const auto& scene : scenes)
         for (const std::pair<int, int>& size : {std::make_pair(1280, 720), std::make_pair(1920, 1080)})
             for (const char* camera : {"oblique", "top"})

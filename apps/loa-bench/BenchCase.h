@@ -47,6 +47,10 @@ void keepFrame(const osg::Image& frame, const std::string& name);
 
 /** The demo city (default CityParameters), generated once per process. */
 osg::ref_ptr<osg::Node> demoCity();
+/** The demo city and, when found (run from the repository root after scripts/fetch-test-data),
+ *  data/test-scenes/opencity-block.osgt classified by the default rules, named "demo-city" and
+ *  "opencity-block". */
+std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> demoCityAndOpenCityBlock();
 
 /** An offscreen renderer of `scene` at w x h with `samples` MSAA samples, from a named camera
  *  of the demo city (docs/demo-city.md). */
@@ -88,6 +92,11 @@ std::vector<Row> transitions(unsigned frames, std::string& renderer);
  *  (the ratio of medians in the same run) on the demo city and opencity-block, 1280x720 and
  *  1920x1080, oblique and top cameras. */
 std::vector<Row> cartographic(unsigned frames, std::string& renderer);
+
+/** Case "saliency" (BenchSaliency.cpp): paper 004 Figure 10 as a number: the share of a
+ *  spectral-residual saliency map's mass inside each library scenario's region of interest,
+ *  photorealistic against the scenario, on the demo city and opencity-block. */
+std::vector<Row> saliency(unsigned frames, std::string& renderer);
 
 /** Case "filters" (BenchFilters.cpp): each image filter on a 512x512 texture: our GPU passes, our
  *  CPU reference and OpenCV's implementation where it has one (built with OpenCV only). */

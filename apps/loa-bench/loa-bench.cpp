@@ -92,11 +92,17 @@ cases:
                  the A-buffer; lost = fraction of pixels whose fragments did not all fit it)
                  and fuse=on (fused styles); error of the fused row = its difference from the
                  fuse=off frame (mean, 0..255; fraction of pixels over 16/255)
-  cartographic   the cartographic devices of paper 004 §3.2.3 (waterlining, relief) against
-                 flat cartographic, each a homogeneous style through the LoA pipeline, on the
-                 demo city and opencity-block at 1280x720 and 1920x1080 from the oblique and
+  cartographic   the cartographic devices of paper 004 §3.2.3 (waterlining, relief, signatures,
+                 streets) against flat cartographic, each a homogeneous style through the LoA
+                 pipeline, on the demo city and opencity-block at 1280x720 and 1920x1080 from the oblique and
                  top cameras: ms per frame and ratio_to_cartographic (medians of the same run);
                  every frame checked against plain rendering's coverage
+  saliency       paper 004 Figure 10 as a number: the share of a spectral-residual saliency
+                 map's mass (Hou & Zhang 2007) inside each library scenario's region of
+                 interest (its interest debug view, interest > 0.5), homogeneous photorealistic
+                 against the scenario, on the demo city and opencity-block, oblique camera,
+                 1280x720 and 1920x1080; error_mean = the scenario's share, error_max =
+                 photorealistic's
   filters        each image filter of paper 000 on a 512x512 texture: our GPU passes, our
                  CPU reference, OpenCV's implementation where it has one; error = ours
                  against OpenCV (8-bit units)
@@ -404,6 +410,23 @@ osg::ref_ptr<osgLoA::OffscreenRenderer> makeRenderer(int w, int h, int samples, 
     return r;
 }
 
+std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> demoCityAndOpenCityBlock()
+{
+    std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> scenes = {{"demo-city", demoCity()}};
+    const std::string block = "data/test-scenes/opencity-block.osgt";
+    if (osg::ref_ptr<osg::Node> model = osgDB::fileExists(block) ? osgDB::readRefNodeFile(block) : nullptr)
+    {
+        osg::ref_ptr<osg::Group> group = new osg::Group;
+        group->addChild(model.get());
+        osgLoA::FeatureClassifier().classify(*group);
+        scenes.push_back({"opencity-block", group});
+    }
+    else
+        std::cerr
+            << "  opencity-block: not found (run from the repository root after scripts/fetch-test-data)\n";
+    return scenes;
+}
+
 double meanChange(const osg::Image& a, const osg::Image& b)
 {
     double sum = 0.0;
@@ -465,6 +488,7 @@ int main(int argc, char** argv)
                                                                {"abuffer", abuffer},
                                                                {"transitions", transitions},
                                                                {"cartographic", cartographic},
+                                                               {"saliency", saliency},
                                                                {"filters", filters},
                                                                {"preprocess", preprocess},
                                                                {"filtering", filtering},
