@@ -14,8 +14,8 @@ uniform vec3 loa_cartographic_colors[6] = vec3[6](vec3(217.0, 217.0, 217.0) / 25
                                                   vec3(229.0, 216.0, 189.0) / 255.0);
 uniform float loa_cartographic_ambient = 0.6;
 uniform int loa_featureSubType; // osgLoA::FeatureSubType code, per feature (0: none)
-// The scenario's colour scheme (osgLoA::ColorScheme): a colour per sub-type code, a = 1 where the
-// scheme gives one. Unset (all 0): every feature in its type's colour.
+// The scenario's colour scheme (osgLoA::ColorScheme): a colour per sub-type code, a = 1 + the
+// feature type it is for (0: none). Unset (all 0): every feature in its type's colour.
 uniform vec4 loa_cartographic_subTypeColors[64];
 
 // The feature type of this draw, 0 (generic) when out of range.
@@ -29,9 +29,11 @@ int loa_cartographic_type()
 vec3 loa_cartographic_color()
 {
     int code = loa_featureSubType;
-    if (code > 0 && code < 64 && loa_cartographic_subTypeColors[code].a > 0.5)
+    int type = loa_cartographic_type();
+    // a = 1 + the type the scheme's colour is for (0: none).
+    if (code > 0 && code < 64 && int(round(loa_cartographic_subTypeColors[code].a)) == type + 1)
         return loa_cartographic_subTypeColors[code].rgb;
-    return loa_cartographic_colors[loa_cartographic_type()];
+    return loa_cartographic_colors[type];
 }
 
 // The flat-shading factor ambient + (1 - ambient) max(n.l, 0) of the face at viewPosition.

@@ -34,6 +34,7 @@ uniform float loa_signatures_vegetationHeight = 0.25;
 layout(binding = 9) uniform sampler2D loa_greenGround;
 uniform vec4 loa_greenGroundTransform = vec4(1.0, 1.0, 0.0, 0.0); // texcoord = xy * s + o
 uniform bool loa_hasGreenGround = false;
+uniform float loa_greenGroundTexel = 0.0; // the map's texel size, world units
 
 const int LOA_SIG_NONE = 0, LOA_SIG_DECIDUOUS = 1, LOA_SIG_CONIFEROUS = 2, LOA_SIG_MIXED = 3,
           LOA_SIG_GRASS = 4, LOA_SIG_SCRUB = 5, LOA_SIG_ORCHARD = 6;
@@ -78,7 +79,7 @@ float loa_signatures_ground(vec2 xy)
 {
     if (!loa_hasGreenGround)
         return -1.0e30;
-    return texture(loa_greenGround, xy * loa_greenGroundTransform.xy + loa_greenGroundTransform.zw).r;
+    return textureLod(loa_greenGround, xy * loa_greenGroundTransform.xy + loa_greenGroundTransform.zw, 0.0).r;
 }
 
 // Signed distance in symbol heights; inkOnly for trunks and strokes.
@@ -116,12 +117,16 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
     int type = loa_cartographic_type();
     int code = loa_featureSubType;
     int featureSymbol = (type == 4 && code >= 0 && code < 64) ? loa_signatures_symbols[code] : LOA_SIG_NONE;
-    // Vegetation (more than vegetationHeight above the ground map) shows the ground the view ray
-    // meets behind it: p is the fragment's own position or that ground point.
+    // The surface's own flat-shading factor, in uniform control flow (it takes derivatives).
+    float surfaceLight = loa_cartographic_light(viewPosition, viewNormal);
+    // Vegetation (more than vegetationHeight + one ground-map texel above the map: the map holds
+    // the ground at texel centres, and sloped ground rises by up to about a texel between them)
+    // shows the ground the view ray meets behind it: p is the fragment's own position or that
+    // ground point.
     vec3 p = scenePosition;
     float ground = loa_signatures_ground(scenePosition.xy);
     bool aboveGround = featureSymbol != LOA_SIG_NONE && ground > -1.0e29 &&
-                       scenePosition.z > ground + loa_signatures_vegetationHeight;
+                       scenePosition.z > ground + loa_signatures_vegetationHeight + loa_greenGroundTexel;
     bool vegetation = aboveGround;
     if (vegetation)
     {
@@ -133,6 +138,11 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
         else
             vegetation = false;
     }
+    // Derivatives are taken at the top level, before any discard.
+    vec2 jx = dFdx(p.xy), jy = dFdy(p.xy);
+    vec4 clipF = gl_ProjectionMatrix * (loa_sceneToView * vec4(p, 1.0));
+    vec2 ndcF = clipF.xy / clipF.w;
+    vec2 pixelsPerNdc = 1.0 / vec2(dFdx(ndcF.x), dFdy(ndcF.y));
 #if defined(LOA_PASS_GBUFFER_COLOR)
     // Drawn in this style alone: the vegetation is left out, and the feature's own ground behind
     // it (depth, normal and edges included) shows. Blended with other styles (fused, A-buffer,
@@ -140,11 +150,6 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
     if (aboveGround)
         discard;
 #endif
-    // Derivatives are taken before any branch on them.
-    vec2 jx = dFdx(p.xy), jy = dFdy(p.xy);
-    vec4 clipF = gl_ProjectionMatrix * (loa_sceneToView * vec4(p, 1.0));
-    vec2 ndcF = clipF.xy / clipF.w;
-    vec2 pixelsPerNdc = 1.0 / vec2(dFdx(ndcF.x), dFdy(ndcF.y));
     vec3 n = vegetation ? vec3(0.0, 0.0, 1.0) : normalize(mat3(loa_viewToScene) * viewNormal);
     if (n.z < 0.0)
         n = -n;
@@ -152,7 +157,11 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
                                                              max(dot(normalize(mat3(loa_sceneToView) * n),
                                                                      normalize(loa_lightDirection)),
                                                                  0.0)
-                             : loa_cartographic_light(viewPosition, viewNormal);
+                             : surfaceLight;
+    // No symbols where there is no green ground (a green feature without ground geometry, or a
+    // model not prepared): the feature is drawn as cartographic draws it.
+    if (!(ground > -1.0e29))
+        featureSymbol = LOA_SIG_NONE;
     vec3 base = loa_cartographic_color() * light;
     if (featureSymbol <= LOA_SIG_NONE || featureSymbol > LOA_SIG_ORCHARD || n.z < loa_signatures_minUp)
         return vec4(base, color.a);
@@ -161,7 +170,7 @@ vec4 loa_styleColor(vec3 scenePosition, vec3 viewPosition, vec3 viewNormal, vec2
     if (!(sigma > 0.0) || any(isinf(pixelsPerNdc)) || any(isnan(pixelsPerNdc)))
         return vec4(base, color.a);
     float cellPixels = loa_signatures_cellPixels;
-    float size = clamp(loa_signatures_symbolPixels, 1.0, 2.0 * cellPixels - 1.5);
+    float size = max(1.0, min(loa_signatures_symbolPixels, 2.0 * cellPixels - 1.5));
     float jitter = featureSymbol == LOA_SIG_ORCHARD ? 0.0 : clamp(loa_signatures_jitter, 0.0, 1.0);
     int l0 = int(clamp(ceil(log2(max(cellPixels * sigma, 1.0e-30))), -40.0, 40.0));
     float bestY = 1.0e30, bestAlpha = 0.0, bestInk = 0.0;

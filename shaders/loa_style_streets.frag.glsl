@@ -2,7 +2,7 @@
 // Graphic style "streets" (paper 004 §3.2.3: streets in Brewer colours with their edges enhanced;
 // osgLoA::StreetPresentation, docs/styles.md): the cartographic style, with streets drawn as on a
 // road map. A street's class (major, minor, path, rail) comes from its sub-type where the model
-// says, else from its width (loa_streetWidth, measured by StreetPresentation::attach); it takes the
+// says (loa_streets_classOf[code]), else from its width (loa_streetWidth, measured by StreetPresentation::attach); it takes the
 // class's fill colour, and its casing colour within loa_streets_casingPixels[class] pixels of the
 // street's edge, box-filtered over the pixel. The edge distance comes from the model's street map
 // (signed, world units, unit 10), so casings live in world space and no casing crosses a junction.
@@ -19,19 +19,14 @@ uniform vec3 loa_streets_fill[4];
 uniform vec3 loa_streets_casing[4];
 uniform float loa_streets_casingPixels[4];
 
-// FeatureSubType codes of the road classes: 32 major, 33 minor, 34 path, 35 rail, 36 railway,
-// 37 track, 38 road (osgLoA::FeatureSubType).
+uniform int loa_streets_classOf[64]; // class per FeatureSubType code (-1: by the width)
+
 int loa_streets_class()
 {
     int c = loa_featureSubType;
-    if (c == 32)
-        return 0;
-    if (c == 33)
-        return 1;
-    if (c == 34 || c == 37)
-        return 2;
-    if (c == 35 || c == 36)
-        return 3;
+    int k = (c >= 0 && c < 64) ? loa_streets_classOf[c] : -1;
+    if (k >= 0 && k < 4)
+        return k;
     if (!(loa_streetWidth > 0.0))
         return -1;
     return loa_streetWidth >= loa_streets_majorWidth ? 0 : (loa_streetWidth >= loa_streets_minorWidth ? 1 : 2);

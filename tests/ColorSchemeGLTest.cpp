@@ -49,7 +49,9 @@ void expectSchemeColours(int w, int h, const loatest::Viewport& vp)
     scene->addChild(quad(2, FeatureType::Street, "major", 30, 0).get());
     scene->addChild(quad(3, FeatureType::Building, "landmark", 60, 0).get());
     scene->addChild(quad(4, FeatureType::Green, "tree", 90, 0).get()); // not in the scheme
-    const osg::BoundingBoxd view(-5, -5, 0, 115, 25, 0);
+    // A building word on a street: the scheme colours it for buildings only.
+    scene->addChild(quad(5, FeatureType::Street, "residential", 120, 0).get());
+    const osg::BoundingBoxd view(-5, -5, 0, 145, 25, 0);
     // Flat shading, top-down: the face normal is the view axis, (0, 0, 1) in view space; the light
     // (0.3, 0.5, 0.8) normalized gives n.l = 0.8 / 0.98995 = 0.80812, factor 0.6 + 0.4 n.l.
     const double light = 0.6 + 0.4 * 0.8 / std::sqrt(0.3 * 0.3 + 0.5 * 0.5 + 0.8 * 0.8);
@@ -57,13 +59,16 @@ void expectSchemeColours(int w, int h, const loatest::Viewport& vp)
     struct Probe
     {
         double x;
+        FeatureType type;
         std::string subType;
         osg::Vec3f typeColor;
     };
-    const Probe probes[] = {{10, "coniferous", GraphicStyle::cartographicColor(FeatureType::Green)},
-                            {40, "major", GraphicStyle::cartographicColor(FeatureType::Street)},
-                            {70, "landmark", GraphicStyle::cartographicColor(FeatureType::Building)},
-                            {100, "tree", GraphicStyle::cartographicColor(FeatureType::Green)}};
+    const Probe probes[] = {
+        {10, FeatureType::Green, "coniferous", GraphicStyle::cartographicColor(FeatureType::Green)},
+        {40, FeatureType::Street, "major", GraphicStyle::cartographicColor(FeatureType::Street)},
+        {70, FeatureType::Building, "landmark", GraphicStyle::cartographicColor(FeatureType::Building)},
+        {100, FeatureType::Green, "tree", GraphicStyle::cartographicColor(FeatureType::Green)},
+        {130, FeatureType::Street, "residential", GraphicStyle::cartographicColor(FeatureType::Street)}};
     for (const char* style : {"cartographic", "waterlining", "relief"})
         for (const std::string& scheme : {std::string("brewer-subtypes"), std::string()})
         {
@@ -75,13 +80,13 @@ void expectSchemeColours(int w, int h, const loatest::Viewport& vp)
             for (const Probe& p : probes)
             {
                 const osg::Vec3f c =
-                    scheme.empty() ? p.typeColor : ColorScheme::colorOf(b, p.subType, p.typeColor);
+                    scheme.empty() ? p.typeColor : ColorScheme::colorOf(b, p.type, p.subType, p.typeColor);
                 // The probe's 8 x 8 m centre (away from the edges the compositor draws).
                 long off = 0, n = 0;
                 for (double y = 6; y <= 14; y += 0.5)
                     for (double x = p.x - 4; x <= p.x + 4; x += 0.5)
                     {
-                        const int px = vp.x + int((x + 5) / 120.0 * vp.w),
+                        const int px = vp.x + int((x + 5) / 150.0 * vp.w),
                                   py = vp.y + int((y + 5) / 30.0 * vp.h);
                         const unsigned char* q = img->data(px, py);
                         ++n;
@@ -134,8 +139,8 @@ TEST(ColorSchemeGLTest, RoadClassesOfARealOsmFile)
     loatest::keepFrame("color-scheme", *img, "west-oakland-1920x1080");
     const ColorScheme::Scheme& b = *ColorScheme::find("brewer-subtypes");
     const osg::Vec3f street = GraphicStyle::cartographicColor(FeatureType::Street);
-    const osg::Vec3f majorC = ColorScheme::colorOf(b, "major", street),
-                     minorC = ColorScheme::colorOf(b, "minor", street);
+    const osg::Vec3f majorC = ColorScheme::colorOf(b, FeatureType::Street, "major", street),
+                     minorC = ColorScheme::colorOf(b, FeatureType::Street, "minor", street);
     const double light = 0.6 + 0.4 * 0.8 / std::sqrt(0.3 * 0.3 + 0.5 * 0.5 + 0.8 * 0.8);
     long majorPixels = 0, minorPixels = 0;
     for (int y = 0; y < h; ++y)

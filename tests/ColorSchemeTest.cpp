@@ -24,7 +24,7 @@ TEST(ColorSchemeTest, BuiltinSchemes)
     EXPECT_EQ(ColorScheme::find("Brewer-Subtypes"), nullptr); // names are case-sensitive
     // Every word of the scheme is a sub-type the table knows (a typo would colour nothing).
     for (const auto& entry : b->colors)
-        EXPECT_GT(FeatureSubType::code(entry.first), 0) << entry.first;
+        EXPECT_GT(FeatureSubType::code(entry.subType), 0) << entry.subType;
 }
 
 TEST(ColorSchemeTest, UniformHoldsTheSchemeByCode)
@@ -34,14 +34,15 @@ TEST(ColorSchemeTest, UniformHoldsTheSchemeByCode)
     EXPECT_EQ(u->getName(), std::string(ColorScheme::kUniform));
     EXPECT_EQ(u->getNumElements(), unsigned(FeatureSubType::kCount));
     osg::Vec4f v;
-    // coniferous (code 2): Paired dark green #33a02c; major (32): Set3 orange #fdb462; landmark
-    // (44): Set3 purple #bc80bd; tree (23): not coloured.
+    // coniferous (code 2): Paired dark green #33a02c, for green spaces (a = 1 + 4); major (32):
+    // Set3 orange #fdb462, for streets (1 + 2); landmark (44): Set3 purple #bc80bd, for buildings
+    // (1 + 1); tree (23): not coloured.
     u->getElement(2, v);
-    EXPECT_EQ(v, osg::Vec4f(51 / 255.0f, 160 / 255.0f, 44 / 255.0f, 1.0f));
+    EXPECT_EQ(v, osg::Vec4f(51 / 255.0f, 160 / 255.0f, 44 / 255.0f, 5.0f));
     u->getElement(32, v);
-    EXPECT_EQ(v, osg::Vec4f(253 / 255.0f, 180 / 255.0f, 98 / 255.0f, 1.0f));
+    EXPECT_EQ(v, osg::Vec4f(253 / 255.0f, 180 / 255.0f, 98 / 255.0f, 3.0f));
     u->getElement(44, v);
-    EXPECT_EQ(v, osg::Vec4f(188 / 255.0f, 128 / 255.0f, 189 / 255.0f, 1.0f));
+    EXPECT_EQ(v, osg::Vec4f(188 / 255.0f, 128 / 255.0f, 189 / 255.0f, 2.0f));
     u->getElement(23, v);
     EXPECT_EQ(v.a(), 0.0f);
     u->getElement(0, v);
@@ -55,10 +56,15 @@ TEST(ColorSchemeTest, UniformHoldsTheSchemeByCode)
     }
     // The twin: a sub-type's colour where the scheme has one, else the type's.
     const osg::Vec3f type(0.5f, 0.5f, 0.5f);
-    EXPECT_EQ(ColorScheme::colorOf(b, "Coniferous", type), osg::Vec3f(51, 160, 44) / 255.0f);
-    EXPECT_EQ(ColorScheme::colorOf(b, "tree", type), type);
-    EXPECT_EQ(ColorScheme::colorOf(b, "", type), type);
-    EXPECT_EQ(ColorScheme::colorOf(b, "no-such-kind", type), type);
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Green, "Coniferous", type),
+              osg::Vec3f(51, 160, 44) / 255.0f);
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Green, "tree", type), type);
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Green, "", type), type);
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Green, "no-such-kind", type), type);
+    // A word of two types: "residential" is coloured for buildings, not for a street so named.
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Building, "residential", type),
+              osg::Vec3f(251, 128, 114) / 255.0f);
+    EXPECT_EQ(ColorScheme::colorOf(b, FeatureType::Street, "residential", type), type);
 }
 
 TEST(ColorSchemeTest, ScenarioSchemeIsValidated)

@@ -45,8 +45,9 @@ TEST(GreenSpaceSignaturesTest, SubTypeCodesAndTheirSymbols)
     EXPECT_EQ(GSS::symbolOf("heath"), GSS::SCRUB);
     EXPECT_EQ(GSS::symbolOf("orchard"), GSS::ORCHARD);
     EXPECT_EQ(GSS::symbolOf(""), GSS::GRASS);
-    EXPECT_EQ(GSS::symbolOf("tree"), GSS::NONE);  // a single tree is drawn as itself
-    EXPECT_EQ(GSS::symbolOf("river"), GSS::NONE); // not a green space
+    EXPECT_EQ(GSS::symbolOf("farmland"), GSS::GRASS); // not in the table: code 0, as ""
+    EXPECT_EQ(GSS::symbolOf("tree"), GSS::NONE);      // a single tree is drawn as itself
+    EXPECT_EQ(GSS::symbolOf("river"), GSS::NONE);     // not a green space
     // The style carries the mapping as a uniform array indexed by the code.
     osg::ref_ptr<GraphicStyle> style = GraphicStyleCatalog::instance().create("signatures");
     ASSERT_TRUE(style.valid());
@@ -241,6 +242,17 @@ TEST(GreenSpaceSignaturesTest, GroundMapIsTheLowestGreenSurface)
     EXPECT_FLOAT_EQ(map.at(5.0, 5.0), 2.0f); // under the crown: the ground
     EXPECT_FLOAT_EQ(map.at(1.0, 9.0), 2.0f);
     EXPECT_EQ(map.at(-0.2, 5.0), GSS::GroundMap::kNoGround);
+    // A green feature that is a tree alone: a crown top (z = 9, up) over an underside (z = 6,
+    // facing down). The underside is no ground: the map holds the top, so the crown is not taken
+    // for vegetation: the tree stays drawn.
+    osg::ref_ptr<osg::Geode> tree = new osg::Geode;
+    tree->addDrawable(loatest::planeQuad(2, 2, 4, 4, 0, 0, 9).get());
+    tree->addDrawable(loatest::planeQuad(4, 2, 2, 4, 0, 0, 6).get()); // reversed: facing down
+    osg::ref_ptr<osg::Group> single = new osg::Group;
+    single->addChild(loatest::asFeature(tree.get(), 5, FeatureType::Green).get());
+    const GSS::GroundMap treeMap = GSS::computeGroundMap(*single);
+    ASSERT_TRUE(treeMap.valid());
+    EXPECT_FLOAT_EQ(treeMap.at(3.0, 3.0), 9.0f);
     // No green feature: no map; impossible parameters: an error naming them.
     osg::ref_ptr<osg::Group> bare = new osg::Group;
     bare->addChild(loatest::asFeature(loatest::planeQuad(0, 0, 1, 1).get(), 3, FeatureType::Terrain).get());

@@ -51,7 +51,19 @@ TEST(StreetPresentationTest, RoadClasses)
     EXPECT_NEAR(SP::casingCoverage(0.1, 0.1, 1.0), 0.5, 1e-12);
     EXPECT_DOUBLE_EQ(SP::casingCoverage(0.2, 0.1, 1.0), 0.0);
     EXPECT_NEAR(SP::casingCoverage(0.2, 0.1, 2.0), 0.5, 1e-12);
-    EXPECT_DOUBLE_EQ(SP::casingCoverage(0.0, 0.1, 0.0), 0.0); // paths: no casing
+    EXPECT_DOUBLE_EQ(SP::casingCoverage(0.0, 0.1, 0.0), 0.0);   // paths: no casing
+    EXPECT_DOUBLE_EQ(SP::casingCoverage(-0.05, 0.1, 1.0), 1.0); // on the edge, within interpolation
+    // The style maps sub-type codes to classes as classOf does (the shader's only source).
+    osg::ref_ptr<GraphicStyle> style = GraphicStyleCatalog::instance().create("streets");
+    const osg::Uniform* classes = style->getParameter("loa_streets_classOf");
+    ASSERT_NE(classes, nullptr);
+    int k = 0;
+    for (const char* word :
+         {"major", "minor", "path", "rail", "railway", "track", "residential", "river", ""})
+    {
+        classes->getElement(unsigned(FeatureSubType::code(word)), k);
+        EXPECT_EQ(k, int(SP::classOf(word, 0.0))) << word;
+    }
     EXPECT_NE(GraphicStyleCatalog::instance().create("streets"), nullptr);
 }
 

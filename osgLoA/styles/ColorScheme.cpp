@@ -23,10 +23,11 @@ const std::vector<ColorScheme::Scheme>& ColorScheme::schemes()
                  "qualitative ColorBrewer colours per sub-type (Set3, Paired, Pastel2): building uses, "
                  "forest kinds, water kinds, road classes",
                  {}};
+        FeatureType type = FeatureType::Building;
         auto add = [&](std::initializer_list<const char*> words, const osg::Vec3f& c)
         {
             for (const char* w : words)
-                b.colors.emplace_back(w, c);
+                b.colors.push_back({type, w, c});
         };
         // Buildings: Set3 red for homes, orange for commerce, lavender for industry, purple for
         // landmarks.
@@ -34,6 +35,7 @@ const std::vector<ColorScheme::Scheme>& ColorScheme::schemes()
         add({"commercial"}, rgb(253, 180, 98));
         add({"industrial"}, rgb(190, 186, 218));
         add({"landmark"}, rgb(188, 128, 189));
+        type = FeatureType::Green;
         // Green spaces: Paired's light and dark green for broadleaf and needleleaf forest, Set3
         // green for mixed forest, Set3 pale green for lawns, Pastel2 for scrub and cemeteries,
         // Paired light orange for orchards.
@@ -46,11 +48,13 @@ const std::vector<ColorScheme::Scheme>& ColorScheme::schemes()
         add({"scrub", "heath"}, rgb(230, 245, 201));
         add({"cemetery"}, rgb(179, 226, 205));
         add({"orchard", "vineyard"}, rgb(253, 191, 111));
+        type = FeatureType::Water;
         // Water: Paired's light blue for running water, dark blue for canals and the sea, Set3
         // teal for standing water.
         add({"river", "stream", "waterway"}, rgb(166, 206, 227));
         add({"canal", "sea"}, rgb(31, 120, 180));
         add({"lake", "pond", "reservoir"}, rgb(141, 211, 199));
+        type = FeatureType::Street;
         // Streets: Set3 orange for major roads, light yellow for minor ones, grey for paths and
         // squares, dark grey for rail.
         add({"major"}, rgb(253, 180, 98));
@@ -84,21 +88,24 @@ osg::ref_ptr<osg::Uniform> ColorScheme::uniform(const Scheme& scheme)
         new osg::Uniform(osg::Uniform::FLOAT_VEC4, kUniform, FeatureSubType::kCount);
     for (unsigned i = 0; i < unsigned(FeatureSubType::kCount); ++i)
         u->setElement(i, osg::Vec4f(0, 0, 0, 0));
-    for (const auto& entry : scheme.colors)
+    for (const Scheme::Entry& entry : scheme.colors)
     {
-        const int code = FeatureSubType::code(entry.first);
-        if (code > 0) u->setElement(unsigned(code), osg::Vec4f(entry.second, 1.0f));
+        const int code = FeatureSubType::code(entry.subType);
+        if (code > 0) u->setElement(unsigned(code), osg::Vec4f(entry.color, 1.0f + float(int(entry.type))));
     }
     return u;
 }
 
-osg::Vec3f ColorScheme::colorOf(const Scheme& scheme, const std::string& subType, const osg::Vec3f& typeColor)
+osg::Vec3f ColorScheme::colorOf(const Scheme& scheme, FeatureType type, const std::string& subType,
+                                const osg::Vec3f& typeColor)
 {
     const int code = FeatureSubType::code(subType);
     if (code <= 0) return typeColor;
-    for (const auto& entry : scheme.colors)
-        if (FeatureSubType::code(entry.first) == code) return entry.second;
-    return typeColor;
+    // As the uniform holds it: the last entry of the code wins, for its type only.
+    const Scheme::Entry* found = nullptr;
+    for (const Scheme::Entry& entry : scheme.colors)
+        if (FeatureSubType::code(entry.subType) == code) found = &entry;
+    return found && found->type == type ? found->color : typeColor;
 }
 
 } // namespace osgLoA

@@ -98,8 +98,11 @@ void GreenSpaceSignatures::registerStyle()
 
 GreenSpaceSignatures::Symbol GreenSpaceSignatures::symbolOf(const std::string& subType)
 {
-    const std::string& s = FeatureSubType::names()[std::size_t(FeatureSubType::code(subType))];
-    if (subType.empty()) return GRASS;
+    const int code = FeatureSubType::code(subType);
+    const std::string& s = FeatureSubType::names()[std::size_t(code)];
+    // "" and words the table does not know share code 0 in the shader: a green space nobody
+    // described (or described in other words) gets grass.
+    if (code == 0) return GRASS;
     if (s == "deciduous") return DECIDUOUS;
     if (s == "coniferous") return CONIFEROUS;
     if (s == "mixed" || s == "forest" || s == "wood" || s == "nature_reserve") return MIXED;
@@ -152,7 +155,7 @@ double GreenSpaceSignatures::visibleFraction(double cellOnScreen, const Paramete
 
 double GreenSpaceSignatures::symbolSize(const Parameters& p)
 {
-    return std::clamp(double(p.symbolPixels), 1.0, 2.0 * double(p.cellPixels) - 1.5);
+    return std::max(1.0, std::min(double(p.symbolPixels), 2.0 * double(p.cellPixels) - 1.5));
 }
 
 int GreenSpaceSignatures::reachCells(double cellOnScreen, const Parameters& p)
@@ -205,6 +208,7 @@ GreenSpaceSignatures::Sample GreenSpaceSignatures::sample(Symbol featureSymbol, 
     if (!(n.normalize() > 0.0)) return best;
     if (n.z() < 0.0) n = -n;
     if (featureSymbol == NONE || n.z() < params.minUp || !(sigma > 0.0)) return best;
+    if (ground && !(ground->at(p.x(), p.y()) > -1.0e29f)) return best; // no green ground here
     const double size = symbolSize(params);
     const double jitter = featureSymbol == ORCHARD ? 0.0 : std::clamp(double(params.jitter), 0.0, 1.0);
     const int l0 = level(sigma, params);
@@ -257,7 +261,22 @@ GreenSpaceSignatures::GroundMap GreenSpaceSignatures::computeGroundMap(osg::Node
 {
     checkGridParameters("signatures", resolution, minTexelSize);
     GroundMap map;
-    const FeatureTriangles green = collectFeatureTriangles(model, FeatureType::Green);
+    FeatureTriangles green = collectFeatureTriangles(model, FeatureType::Green);
+    // Ground faces up: only triangles whose (winding) normal rises at most 45 degrees from the
+    // vertical make the map, so a crown's underside is not taken for ground, and a green feature
+    // that is a tree alone (no ground geometry) keeps its crown top as its "ground" and is drawn.
+    {
+        std::vector<osg::Vec3d> up;
+        for (std::size_t t = 0; t + 2 < green.corners.size(); t += 3)
+        {
+            const osg::Vec3d n =
+                (green.corners[t + 1] - green.corners[t]) ^ (green.corners[t + 2] - green.corners[t]);
+            if (n.z() >= 0.7071 * n.length())
+                up.insert(up.end(), green.corners.begin() + std::ptrdiff_t(t),
+                          green.corners.begin() + std::ptrdiff_t(t + 3));
+        }
+        green.corners.swap(up);
+    }
     map.greenFeatures = green.features;
     map.triangles = unsigned(green.corners.size() / 3);
     if (green.corners.empty()) return map;
@@ -286,6 +305,7 @@ GreenSpaceSignatures::GroundMap GreenSpaceSignatures::attach(osg::Node& model, i
     ss->addUniform(new osg::Uniform("loa_greenGround", int(kUnit)));
     ss->addUniform(new osg::Uniform("loa_greenGroundTransform", map.grid.textureTransform()));
     ss->addUniform(new osg::Uniform("loa_hasGreenGround", true));
+    ss->addUniform(new osg::Uniform("loa_greenGroundTexel", float(map.grid.texelSize)));
     return map;
 }
 

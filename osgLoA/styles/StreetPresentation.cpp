@@ -1,4 +1,5 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
+#include <osgLoA/semantics/FeatureSubType>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/StreetPresentation>
 
@@ -63,6 +64,13 @@ osg::ref_ptr<GraphicStyle> StreetPresentation::create()
     ss->addUniform(f.get());
     ss->addUniform(c.get());
     ss->addUniform(w.get());
+    // The class each sub-type code names (classOf without a width; -1: by the width).
+    osg::ref_ptr<osg::Uniform> classes =
+        new osg::Uniform(osg::Uniform::INT, "loa_streets_classOf", FeatureSubType::kCount);
+    const std::vector<std::string>& names = FeatureSubType::names();
+    for (unsigned i = 0; i < unsigned(FeatureSubType::kCount); ++i)
+        classes->setElement(i, int(classOf(names[i], 0.0)));
+    ss->addUniform(classes.get());
     return s;
 }
 
@@ -92,8 +100,10 @@ StreetPresentation::RoadClass StreetPresentation::classOf(const std::string& sub
 
 double StreetPresentation::casingCoverage(double d, double pixelSize, double casingPixels)
 {
-    if (!(casingPixels > 0.0) || !(pixelSize > 0.0) || !(d >= 0.0)) return 0.0;
-    return std::clamp(casingPixels + 0.5 - d / pixelSize, 0.0, 1.0);
+    if (!(casingPixels > 0.0) || !(pixelSize > 0.0) || std::isnan(d)) return 0.0;
+    // A street fragment whose map value is below 0 lies on the edge, within the map's
+    // interpolation: full casing.
+    return std::clamp(casingPixels + 0.5 - std::max(d, 0.0) / pixelSize, 0.0, 1.0);
 }
 
 float StreetPresentation::StreetMap::sample(double x, double y) const

@@ -43,8 +43,9 @@ std::string SharedIds::image(std::uint64_t id, const std::string& className, boo
 void BoundedInputIterator::fail(const std::string& what)
 {
     // OSG goes on reading after a serializer failed (InputStream::throwException: "SaliencyMetric:
-    // unknown Kind '7'"), out of step with the data: that first failure is the file's problem,
-    // not the nonsense read after it (a string field read from the middle of a number).
+    // unknown Kind '7'"), out of step with the data: the failure it recorded (the last, if
+    // several) names the file's problem, not the nonsense read after it (a string field read
+    // from the middle of a number).
     if (const osgDB::InputException* e = _inputStream ? _inputStream->getException() : nullptr)
     {
         const std::string where = e->getField();
