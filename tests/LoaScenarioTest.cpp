@@ -80,10 +80,10 @@ std::string smallCityFile(const std::string& dir)
 }
 
 const char* const kLibraryNames[] = {"manual",       "distance",  "view-angle", "route",
-                                     "circular-roi", "blueprint", "landscape"};
+                                     "circular-roi", "blueprint", "landscape",  "navigation"};
 } // namespace
 
-TEST(LoaScenarioTest, ListShowsTheSevenLibraryScenarios)
+TEST(LoaScenarioTest, ListShowsTheEightLibraryScenarios)
 {
     std::string out;
     ASSERT_EQ(scenario("list", out), 0) << out;
@@ -154,7 +154,7 @@ TEST(LoaScenarioTest, ValidatePassesEveryLibraryFile)
     unsigned n = 0;
     for (const std::string& f : osgDB::getDirectoryContents(dir))
         if (osgLoA::ScenarioLibrary::isScenarioFile(f)) files += " " + quote(dir + "/" + f), ++n;
-    ASSERT_GE(n, 7u);
+    ASSERT_GE(n, 8u);
     std::string out;
     EXPECT_EQ(scenario("validate" + files, out), 0) << out;
     EXPECT_FALSE(contains(out, "error")) << out;
@@ -437,8 +437,8 @@ TEST(LoaScenarioTest, ExplainWeightsSumToOnePerDrawnFeature)
 {
     const std::string dir = loatest::freshDirectory("LoaScenarioTestExplain");
     const std::string city = smallCityFile(dir);
-    for (const char* name :
-         {"distance", "view-angle", "manual", "route", "circular-roi", "blueprint", "landscape"})
+    for (const char* name : {"distance", "view-angle", "manual", "route", "circular-roi", "blueprint",
+                             "landscape", "navigation"})
     {
         const json e = scenarioJson(std::string("explain ") + name + " " + quote(city) +
                                     " --camera oblique --features 0 --json");

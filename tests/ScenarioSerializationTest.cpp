@@ -839,10 +839,9 @@ TEST(ScenarioSerializationTest, LoadByNameByPathAndUnknownNames)
     }
     catch (const ScenarioError& e)
     {
-        EXPECT_EQ(
-            std::string(e.what()),
-            "no scenario named 'nowhere' (known: blueprint, circular-roi, distance, extra, landscape, manual, route, "
-            "view-angle)");
+        EXPECT_EQ(std::string(e.what()), "no scenario named 'nowhere' (known: blueprint, circular-roi, "
+                                         "distance, extra, landscape, manual, navigation, route, "
+                                         "view-angle)");
     }
     loatest::setFilePath("");
     EXPECT_THROW(ScenarioLibrary::load(""), ScenarioError);

@@ -122,6 +122,50 @@ void addTwoLevels(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetri
         }
 }
 
+// A detailed level (photorealistic) over a map in which each feature type has its cartographic
+// device of paper 004 §3.2.3 (relief, waterlining, signatures, streets; cartographic for buildings
+// and the rest): the scenarios that read the context as a map.
+void addDetailOverMap(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetric>>& metrics,
+                      const BlendFunction& detailed, const BlendFunction& map,
+                      const osg::Vec2f& interestScope)
+{
+    struct Part
+    {
+        const char* name;
+        const char* style;
+        TransitionConfiguration::FeatureTypes types;
+        TransitionConfiguration::Interpolation mode;
+        const BlendFunction& blend;
+    };
+    const Part parts[] = {
+        {"photorealistic-objects", "photorealistic", kObjectTypes, TransitionConfiguration::OBJECT, detailed},
+        {"photorealistic-areas", "photorealistic", kAreaTypes, TransitionConfiguration::FRAGMENT, detailed},
+        {"cartographic-objects", "cartographic", kObjectTypes, TransitionConfiguration::OBJECT, map},
+        {"relief-terrain", "relief", {FeatureType::Terrain}, TransitionConfiguration::FRAGMENT, map},
+        {"waterlining-water", "waterlining", {FeatureType::Water}, TransitionConfiguration::FRAGMENT, map},
+        {"signatures-green", "signatures", {FeatureType::Green}, TransitionConfiguration::FRAGMENT, map},
+        {"streets-streets", "streets", {FeatureType::Street}, TransitionConfiguration::FRAGMENT, map}};
+    for (const Part& p : parts)
+    {
+        auto c = config(p.name, p.style, p.types, p.mode, p.blend);
+        c->setInterestRange(interestScope);
+        for (const auto& m : metrics)
+            c->addMetric(osg::clone(m.get(), osg::CopyOp::DEEP_COPY_ALL));
+        s.addConfiguration(c.get());
+    }
+}
+
+// Landmarks (static interest >= 0.8) photorealistic whatever the other configurations do.
+void addLandmarksInDetail(UsageScenario& s)
+{
+    TransitionConfiguration::FeatureTypes allTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes));
+    auto landmarks = config("landmarks", "photorealistic", allTypes, TransitionConfiguration::OBJECT,
+                            BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
+    landmarks->setInterestRange(osg::Vec2f(0.8f, 1.0f));
+    landmarks->addMetric(new SaliencyMetric(SaliencyMetric::FEATURE_INTEREST, 0.0, 0.0));
+    s.addConfiguration(landmarks.get());
+}
+
 osg::ref_ptr<UsageScenario> makeScenario(const std::string& name, const std::string& description)
 {
     osg::ref_ptr<UsageScenario> s = new UsageScenario;
@@ -133,7 +177,8 @@ osg::ref_ptr<UsageScenario> makeScenario(const std::string& name, const std::str
 
 std::vector<std::string> ScenarioLibrary::builtinNames()
 {
-    return {"manual", "distance", "view-angle", "route", "circular-roi", "blueprint", "landscape"};
+    return {"manual",       "distance",  "view-angle", "route",
+            "circular-roi", "blueprint", "landscape",  "navigation"};
 }
 
 osg::ref_ptr<UsageScenario> ScenarioLibrary::createHomogeneous(const std::string& style)
@@ -200,12 +245,7 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         distance->setScale(M::VIEW);
         addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), distance}, "photorealistic", "cartographic",
                      0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
-        TransitionConfiguration::FeatureTypes allTypes(std::begin(kFeatureTypes), std::end(kFeatureTypes));
-        auto landmarks = config("landmarks", "photorealistic", allTypes, TransitionConfiguration::OBJECT,
-                                BlendFunction(0.0f, 0.0f, 1.0f, 1.0f));
-        landmarks->setInterestRange(osg::Vec2f(0.8f, 1.0f));
-        landmarks->addMetric(new M(M::FEATURE_INTEREST, 0.0, 0.0));
-        s->addConfiguration(landmarks.get());
+        addLandmarksInDetail(*s);
         // §3.2.2: the defaults morph landmarks over the same view angles (25-60 degrees) as
         // the transitions above; non-landmarks stay (sinking off).
         s->setLandmarkDeformation(new LandmarkDeformation);
@@ -277,35 +317,42 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         s->setColorScheme("brewer-subtypes");
         osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.75, 1.1);
         distance->setScale(M::VIEW);
-        const BlendFunction detailed(0.0f, 1.0f, 1.0f, 1.0f), map(0.0f, 0.0f, 0.0f, 1.0f);
-        struct Part
-        {
-            const char* name;
-            const char* style;
-            TransitionConfiguration::FeatureTypes types;
-            TransitionConfiguration::Interpolation mode;
-            const BlendFunction& blend;
-        };
-        const Part parts[] = {
-            {"photorealistic-objects", "photorealistic", kObjectTypes, TransitionConfiguration::OBJECT,
-             detailed},
-            {"photorealistic-areas", "photorealistic", kAreaTypes, TransitionConfiguration::FRAGMENT,
-             detailed},
-            {"cartographic-objects", "cartographic", kObjectTypes, TransitionConfiguration::OBJECT, map},
-            {"relief-terrain", "relief", {FeatureType::Terrain}, TransitionConfiguration::FRAGMENT, map},
-            {"waterlining-water",
-             "waterlining",
-             {FeatureType::Water},
-             TransitionConfiguration::FRAGMENT,
-             map},
-            {"signatures-green", "signatures", {FeatureType::Green}, TransitionConfiguration::FRAGMENT, map},
-            {"streets-streets", "streets", {FeatureType::Street}, TransitionConfiguration::FRAGMENT, map}};
-        for (const Part& p : parts)
-        {
-            auto c = config(p.name, p.style, p.types, p.mode, p.blend);
-            c->addMetric(osg::clone(distance.get(), osg::CopyOp::DEEP_COPY_ALL));
-            s->addConfiguration(c.get());
-        }
+        addDetailOverMap(*s, {distance}, BlendFunction(0.0f, 1.0f, 1.0f, 1.0f),
+                         BlendFunction(0.0f, 0.0f, 0.0f, 1.0f), osg::Vec2f(0.0f, 1.0f));
+        return s;
+    }
+    if (name == "navigation")
+    {
+        // §4.1, car navigation: the vertical view angle blends detailed and map-like views (the
+        // background of a perspective view is map-like), the route keeps its detail, the map
+        // shows each feature type in its cartographic device, and landmarks stay detailed and
+        // turn to the viewer.
+        auto s = makeScenario(
+            name, "Car navigation (paper 004 §4.1): the vertical view angle (detailed below 25 degrees, "
+                  "map-like above 60, weight 1), the view distance (detailed within 0.35 D, map-like "
+                  "beyond 2 D, weight 2) and the route along the scene's longest street chain (detailed "
+                  "within 0.03 S of it, map-like 0.14 S away, weight 2) blend a detailed foreground and "
+                  "route into a map-like background: streets as a road map, water "
+                  "waterlined, green spaces with signatures, terrain as relief, buildings cartographic, in "
+                  "the brewer-subtypes colours; landmarks (static interest >= 0.8) stay photorealistic "
+                  "and turn their best view to the viewer (§3.2.2).");
+        s->setColorScheme("brewer-subtypes");
+        osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE, {}, 0.01);
+        route->setName("route");
+        route->setPlacement(RegionOfInterest::LONGEST_STREET);
+        route->setSceneScale(true);
+        s->addRegion(route.get());
+        osg::ref_ptr<M> region = new M(M::REGION, 0.03, 0.14, 1.0);
+        region->setScale(M::SCENE);
+        region->setWeight(2.0);
+        osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.35, 2.0, 2.0);
+        distance->setScale(M::VIEW);
+        const std::vector<osg::ref_ptr<M>> metrics = {new M(M::VIEW_ANGLE, 25.0, 60.0, 1.0), distance,
+                                                      region};
+        addDetailOverMap(*s, metrics, BlendFunction(0.4f, 0.6f, 1.0f, 1.0f),
+                         BlendFunction(0.0f, 0.0f, 0.4f, 0.6f), osg::Vec2f(0.0f, 0.8f));
+        addLandmarksInDetail(*s);
+        s->setLandmarkDeformation(new LandmarkDeformation);
         return s;
     }
     throw ScenarioError("unknown built-in scenario '" + name + "'");
