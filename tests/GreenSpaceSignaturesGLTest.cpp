@@ -40,18 +40,6 @@ void keep(const osg::Image& image, const std::string& name)
     loatest::keepFrame("signatures", image, name);
 }
 
-/** A mask style: green spaces pure magenta, everything else as cartographic. */
-void registerMask()
-{
-    static bool done = false;
-    if (done) return;
-    done = true;
-    osg::ref_ptr<GraphicStyle> mask = GraphicStyleCatalog::instance().create("cartographic");
-    mask->setName("test-green-mask");
-    mask->getParameter("loa_cartographic_colors")->setElement(4, osg::Vec3f(1, 0, 1));
-    GraphicStyleCatalog::instance().add(*mask);
-}
-
 /** A green feature of this sub-type over [x0, x1] x [y0, y1]. */
 osg::ref_ptr<osg::Node> green(const std::string& subType, double x0, double y0, double x1, double y1)
 {
@@ -261,10 +249,10 @@ TEST(GreenSpaceSignaturesGLTest, VegetationGivesWayToItsSignatures)
 
 TEST(GreenSpaceSignaturesGLTest, DiffersFromCartographicOnGreenSpacesOnlyInTheDemoCity)
 {
-    registerMask();
     osg::ref_ptr<osg::Node> city = CityGenerator(CityParameters()).generate();
-    const loatest::MaskedDifference d = loatest::differenceInMask(
-        city.get(), "signatures", "cartographic", "test-green-mask", 1920, 1080, "signatures", "demo-city");
+    const loatest::MaskedDifference d = loatest::differenceInMask(city.get(), "signatures", "cartographic",
+                                                                  loatest::typeMaskStyle(FeatureType::Green),
+                                                                  1920, 1080, "signatures", "demo-city");
     EXPECT_EQ(d.outside, 0);
     ASSERT_GT(d.inside, 0);
     EXPECT_GT(double(d.changed), 0.05 * d.inside);
@@ -274,7 +262,6 @@ TEST(GreenSpaceSignaturesGLTest, DiffersFromCartographicOnGreenSpacesOnlyInAReal
 {
     const std::string file = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/West-Oakland.osm";
     if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
-    registerMask();
     osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
     ASSERT_TRUE(model.valid());
     // The file's green areas, counted by hand: one closed way leisure=park and one
@@ -297,9 +284,9 @@ TEST(GreenSpaceSignaturesGLTest, DiffersFromCartographicOnGreenSpacesOnlyInAReal
     const osg::Vec3d c = parks.center(), half = (parks._max - parks._min) * 1.5;
     const osg::BoundingBoxd frame(c - half, c + half);
     EXPECT_EQ(subTypes, (std::map<std::string, int>{{"park", 1}, {"playground", 1}}));
-    const loatest::MaskedDifference d =
-        loatest::differenceInMask(model.get(), "signatures", "cartographic", "test-green-mask", 1920, 1080,
-                                  "signatures", "west-oakland", &frame);
+    const loatest::MaskedDifference d = loatest::differenceInMask(
+        model.get(), "signatures", "cartographic", loatest::typeMaskStyle(FeatureType::Green), 1920, 1080,
+        "signatures", "west-oakland", &frame);
     EXPECT_EQ(d.outside, 0);
     ASSERT_GT(d.inside, 0);
     EXPECT_GT(double(d.changed), 0.05 * d.inside);

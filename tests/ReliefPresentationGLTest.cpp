@@ -41,8 +41,7 @@ osg::ref_ptr<osg::Node> plane(double a, double b, double x0, double y0, double x
     return loatest::asFeature(loatest::planeQuad(x0, y0, x1, y1, a, b).get(), 1, FeatureType::Terrain);
 }
 
-/** Registers relief variants once: hachures only, form lines only, and a mask style that draws
- *  terrain pure magenta, unlit, and everything else as cartographic. */
+/** Registers relief variants once: hachures only, form lines only. */
 void registerVariants()
 {
     static bool done = false;
@@ -57,10 +56,6 @@ void registerVariants()
     forms->getParameter("loa_relief_minSlope")->set(10.0f);
     forms->getParameter("loa_relief_maxSlope")->set(20.0f);
     GraphicStyleCatalog::instance().add(*forms);
-    osg::ref_ptr<GraphicStyle> mask = GraphicStyleCatalog::instance().create("cartographic");
-    mask->setName("test-terrain-mask");
-    mask->getParameter("loa_cartographic_colors")->setElement(5, osg::Vec3f(1, 0, 1));
-    GraphicStyleCatalog::instance().add(*mask);
 }
 
 void keep(const osg::Image& image, const std::string& name)
@@ -193,7 +188,8 @@ void expectDifferenceOnTerrainOnly(const std::string& name, osg::Node* model, in
 {
     registerVariants();
     const loatest::MaskedDifference d = loatest::differenceInMask(
-        model, "relief", "cartographic", "test-terrain-mask", width, height, "relief", name);
+        model, "relief", "cartographic", loatest::typeMaskStyle(FeatureType::Terrain), width, height,
+        "relief", name);
     EXPECT_EQ(d.outside, 0) << name;
     ASSERT_GT(d.inside, 0) << name << ": no terrain in view";
     EXPECT_GT(double(d.changed), minShare * d.inside) << name;

@@ -138,19 +138,11 @@ TEST(StreetPresentationGLTest, DiffersFromCartographicOnStreetsOnlyInARealOsmFil
 {
     const std::string file = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/West-Oakland.osm";
     if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
-    static bool registered = false;
-    if (!registered)
-    {
-        registered = true;
-        osg::ref_ptr<GraphicStyle> mask = GraphicStyleCatalog::instance().create("cartographic");
-        mask->setName("test-street-mask");
-        mask->getParameter("loa_cartographic_colors")->setElement(2, osg::Vec3f(1, 0, 1));
-        GraphicStyleCatalog::instance().add(*mask);
-    }
     osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
     ASSERT_TRUE(model.valid());
-    const loatest::MaskedDifference d = loatest::differenceInMask(
-        model.get(), "streets", "cartographic", "test-street-mask", 1920, 1080, "streets", "west-oakland");
+    const loatest::MaskedDifference d = loatest::differenceInMask(model.get(), "streets", "cartographic",
+                                                                  loatest::typeMaskStyle(FeatureType::Street),
+                                                                  1920, 1080, "streets", "west-oakland");
     EXPECT_EQ(d.outside, 0);
     ASSERT_GT(d.inside, 0);
     // Major roads change fill; every street gets casings.

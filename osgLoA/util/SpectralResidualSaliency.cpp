@@ -45,6 +45,18 @@ void fft(Complex* a, int n, int stride, bool inverse)
     }
 }
 
+/** The image pixels [x0, x1) x [y0, y1) of map cell (cx, cy) of an image w x h (at least one). */
+struct CellRange
+{
+    int x0, x1, y0, y1;
+    CellRange(int cx, int cy, int w, int h)
+        : x0(cx * w / N), x1(std::max(x0 + 1, (cx + 1) * w / N)), y0(cy * h / N),
+          y1(std::max(y0 + 1, (cy + 1) * h / N))
+    {
+    }
+    int pixels() const { return (x1 - x0) * (y1 - y0); }
+};
+
 void fft2(std::vector<Complex>& a, bool inverse)
 {
     for (int y = 0; y < N; ++y)
@@ -67,19 +79,18 @@ std::vector<float> SpectralResidualSaliency::compute(const osg::Image& image)
     for (int cy = 0; cy < N; ++cy)
         for (int cx = 0; cx < N; ++cx)
         {
-            const int x0 = cx * w / N, x1 = std::max(x0 + 1, (cx + 1) * w / N);
-            const int y0 = cy * h / N, y1 = std::max(y0 + 1, (cy + 1) * h / N);
+            const CellRange c(cx, cy, w, h);
             double sum = 0.0;
-            for (int y = y0; y < y1; ++y)
+            for (int y = c.y0; y < c.y1; ++y)
             {
                 const unsigned char* row = image.data(0, y);
-                for (int x = x0; x < x1; ++x)
+                for (int x = c.x0; x < c.x1; ++x)
                 {
                     const unsigned char* p = row + std::size_t(x) * channels;
                     sum += (0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2]) / 255.0;
                 }
             }
-            a[std::size_t(cy) * N + cx] = sum / double((x1 - x0) * (y1 - y0));
+            a[std::size_t(cy) * N + cx] = sum / double(c.pixels());
         }
     fft2(a, false);
     // The spectral residual: log amplitude less its 3 x 3 mean (edges replicated), the phase kept.
@@ -145,14 +156,13 @@ double SpectralResidualSaliency::massInside(const std::vector<float>& map,
     for (int cy = 0; cy < N; ++cy)
         for (int cx = 0; cx < N; ++cx)
         {
-            const int x0 = cx * width / N, x1 = std::max(x0 + 1, (cx + 1) * width / N);
-            const int y0 = cy * height / N, y1 = std::max(y0 + 1, (cy + 1) * height / N);
+            const CellRange c(cx, cy, width, height);
             long in = 0;
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x)
+            for (int y = c.y0; y < c.y1; ++y)
+                for (int x = c.x0; x < c.x1; ++x)
                     in += mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] ? 1 : 0;
             const double m = map[std::size_t(cy) * N + std::size_t(cx)];
-            inside += m * double(in) / double((x1 - x0) * (y1 - y0));
+            inside += m * double(in) / double(c.pixels());
             total += m;
         }
     return total > 0.0 ? inside / total : 0.0;

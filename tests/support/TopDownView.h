@@ -5,6 +5,7 @@
 
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/Feature>
+#include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageFile>
@@ -118,6 +119,22 @@ inline void keepFrame(const std::string& folder, const osg::Image& image, const 
     const std::string dir = std::string(LOA_TEST_OUTPUT_DIR) + "/" + folder;
     osgDB::makeDirectory(dir);
     osgLoA::ImageFile::write(dir + "/" + name + ".png", image);
+}
+
+/** A mask style for differenceInMask: "test-TYPE-mask", cartographic with the features of this
+ *  type pure magenta; registered in the catalog on first use. Returns its name. */
+inline std::string typeMaskStyle(osgLoA::FeatureType type)
+{
+    const std::string name = std::string("test-") + osgLoA::toString(type) + "-mask";
+    osgLoA::GraphicStyleCatalog& catalog = osgLoA::GraphicStyleCatalog::instance();
+    if (!catalog.prototype(name))
+    {
+        osg::ref_ptr<osgLoA::GraphicStyle> mask = catalog.create("cartographic");
+        mask->setName(name);
+        mask->getParameter("loa_cartographic_colors")->setElement(unsigned(type), osg::Vec3f(1, 0, 1));
+        catalog.add(*mask);
+    }
+    return name;
 }
 
 /** Pixels of a style's top-down frame that differ from another style's, inside and outside the
