@@ -32,6 +32,9 @@ uniform bool loa_blending = false;   // the model blends (GL_BLEND) where this i
 uniform sampler2D loa_frontDepth;    // the G-buffer's depth (A-buffer and ping-pong passes)
 uniform float loa_depthEpsilon = 2.0e-6; // window-depth tolerance of "at the front surface"
 
+// The scenario's regions drawn as lines over every style's colour (osgLoA::RouteLine).
+#pragma include "loa_route_line.glsl"
+
 float loa_blendWeight(int j, vec3 p);
 
 #if defined(LOA_PASS_GBUFFER_COLOR) || defined(LOA_PASS_ABUFFER) || defined(LOA_PASS_PINGPONG)
@@ -119,6 +122,7 @@ void loa_writeGeometry(vec4 edge, float unsharp)
 
 void main()
 {
+    loa_routeLineDerivatives(loa_scenePosition); // before any discard
     if (!loa_alphaTestPasses())
         discard;
 #if defined(LOA_PASS_GBUFFER_COLOR)
@@ -129,7 +133,7 @@ void main()
         discard;
 #endif
     vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
-    loa_outColor = vec4(c.rgb, 1.0);
+    loa_outColor = vec4(loa_routeLine(c.rgb, loa_scenePosition, loa_facingNormal()), 1.0);
     loa_writeGeometry(loa_premultipliedEdge(loa_configuration), loa_styleUnsharp[loa_configuration]);
 #elif defined(LOA_PASS_GBUFFER_FUSED)
     // Only features whose contributing configurations are all visible and opaque come here, on
@@ -141,7 +145,7 @@ void main()
                             unsharp);
     if (c.a <= 0.0)
         discard;
-    loa_outColor = vec4(c.rgb / c.a, 1.0);
+    loa_outColor = vec4(loa_routeLine(c.rgb / c.a, loa_scenePosition, loa_facingNormal()), 1.0);
     loa_writeGeometry(edge / c.a, unsharp / c.a);
 #elif defined(LOA_PASS_GBUFFER_DEPTH)
     // Front surface only where the feature is opaque: its visible styles' weights sum to 1.
@@ -168,6 +172,7 @@ void main()
         discard;
     loa_discardBehindFront();
     vec4 c = loa_styleColor(loa_scenePosition, loa_viewPosition, loa_facingNormal(), loa_texCoord, loa_color);
+    c.rgb = loa_routeLine(c.rgb, loa_scenePosition, loa_facingNormal());
     // Alpha makes a surface translucent only where the model blends (GL_BLEND), as in the fixed
     // function; elsewhere the style's colour is opaque and only the alpha test drops fragments.
     // Where it blends, a style that ignores the texture (cartographic, blueprint) takes its alpha

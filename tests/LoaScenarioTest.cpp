@@ -113,9 +113,10 @@ TEST(LoaScenarioTest, ShowRouteHasThePolyline)
 {
     std::string out;
     ASSERT_EQ(scenario("show route", out), 0) << out;
-    // The route is fitted to each model: along its longest street chain, sizes in units of S.
-    EXPECT_TRUE(contains(out, "route: polyline placed longest-street, radius 0.01 S (vertices: the model's "
-                              "longest street chain)"))
+    // The route is fitted to each model: along its streets, sizes in units of S; it is drawn.
+    EXPECT_TRUE(contains(out, "route: polyline placed longest-street, radius 0.01 S, drawn as a 6 px line of "
+                              "colour 0.2157,0.4941,0.7216 (opacity 1) (vertices: a route along the model's "
+                              "streets)"))
         << out;
     EXPECT_TRUE(contains(out, "region near 0.03 S far 0.14 S weight 1")) << out;
     EXPECT_TRUE(contains(out, "fitted to each model: S is the scene's size")) << out;

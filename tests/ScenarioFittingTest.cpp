@@ -1,12 +1,13 @@
 // ScenarioFitting (issue 18 item 3): scene- and view-relative metrics, regions placed at the
-// scene centre, at a feature or along the longest street chain, the focus on the tallest
-// landmark, and what a user pins left alone; computed by hand on a small synthetic scene.
+// scene centre, at a feature or along the streets (chain of boxes, or network of centre lines), the focus on
+// the tallest landmark, and what a user pins left alone; computed by hand on a small synthetic scene.
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioFitting>
 #include <osgLoA/transitions/ScenarioLibrary>
 
 #include <osg/Geode>
+#include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 
 #include <gtest/gtest.h>
@@ -222,4 +223,61 @@ TEST(ScenarioFittingTest, LoANodeBindsTheFittedScenario)
     EXPECT_EQ(node->getScenario()->getFocusFeature(), 0u);
     EXPECT_EQ(node->getFitting().getScenario()->getFocusFeature(), 8u);
     EXPECT_TRUE(node->getEvaluator()->getView().focus.valid());
+}
+
+// Streets with centre lines (as the OSM importer gives them) form a network: the route is its
+// longest shortest path through the junctions, along the lines, not through the features'
+// centres. Network (metres): a main street A (0,0)-(100,0)-(200,0) as one way, a side street B
+// from the junction (100,0) north to (100,80) then east to (160,80) (length 140), a spur C
+// (200,0)-(200,-30) (length 30), a way D under a transform (translated by (0,-50)) whose own
+// coordinates (0,50)-(-70,50) put it at (0,0)-(-70,0): it joins A's end. The farthest pair is
+// (-70,0) .. (160,80): 70 + 100 + 140 = 310 m (via the junction at (100,0)), against
+// (-70,0) .. (200,-30): 300 m and (160,80) .. (200,-30): 270 m. A lone way E far off is its own
+// network. The route's vertices: (-70,0), (0,0), (100,0), (100,80), (160,80), minus (0,0),
+// which is on a straight line.
+TEST(ScenarioFittingTest, TheRouteFollowsTheCentreLinesOfAStreetNetwork)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    auto way = [&](osg::Group& parent, unsigned id, const Feature::Centreline& line)
+    {
+        osg::ref_ptr<osg::Geode> g = new osg::Geode;
+        osg::BoundingBox b;
+        for (const osg::Vec2d& p : line)
+            b.expandBy(osg::Vec3(p.x(), p.y(), 0.0f));
+        g->addDrawable(new osg::ShapeDrawable(
+            new osg::Box(b.center(), b.xMax() - b.xMin() + 4.0f, b.yMax() - b.yMin() + 4.0f, 0.2f)));
+        osg::ref_ptr<Feature> f = new Feature(id, FeatureType::Street, "", Feature::MODEL_DATA);
+        f->setCentreline(line);
+        Feature::attach(*g, f.get());
+        parent.addChild(g);
+    };
+    way(*root, 1, {{0, 0}, {100, 0}, {200, 0}});
+    way(*root, 2, {{100, 0}, {100, 80}, {160, 80}});
+    way(*root, 3, {{200, 0}, {200, -30}});
+    osg::ref_ptr<osg::MatrixTransform> shifted = new osg::MatrixTransform(osg::Matrix::translate(0, -50, 0));
+    root->addChild(shifted);
+    way(*shifted, 4, {{0, 50}, {-70, 50}});
+    way(*root, 5, {{1000, 1000}, {1010, 1000}});
+    FeatureIndex index(*root);
+    index.updateBounds();
+    unsigned features = 0;
+    std::vector<osg::Vec2d> v = ScenarioFitting::longestStreetChain(index, 1.0, &features);
+    ASSERT_EQ(v.size(), 4u);
+    if (v.front().x() > v.back().x()) std::reverse(v.begin(), v.end());
+    const std::vector<osg::Vec2d> expected = {{-70, 0}, {100, 0}, {100, 80}, {160, 80}};
+    for (std::size_t i = 0; i < expected.size(); ++i)
+    {
+        EXPECT_NEAR(v[i].x(), expected[i].x(), 1e-9) << i;
+        EXPECT_NEAR(v[i].y(), expected[i].y(), 1e-9) << i;
+    }
+    EXPECT_EQ(features, 3u); // D, A, B
+
+    // A network needs two ways: one way alone falls back to the chain of boxes (its centre).
+    osg::ref_ptr<osg::Group> lone = new osg::Group;
+    way(*lone, 1, {{0, 0}, {100, 0}});
+    FeatureIndex loneIndex(*lone);
+    loneIndex.updateBounds();
+    v = ScenarioFitting::longestStreetChain(loneIndex, 1.0, &features);
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_NEAR(v[0].x(), 50.0, 1e-3);
 }

@@ -111,6 +111,8 @@ osg::ref_ptr<R> region(R::Shape shape)
     osg::ref_ptr<R> r =
         new R(shape, {{-480.5, -330.25}, {-160.0, 40.125}, {200.75, 330.0}, {460.0, -12.5}}, 7.5 + shape);
     r->setName(std::string("region \"") + R::toString(shape) + "\" of the old town");
+    r->setLineWidth(4.5 + shape);
+    r->setLineColor(osg::Vec4f(0.125f, 0.25f, 0.5f + 0.125f * shape, 0.75f));
     return r;
 }
 
@@ -181,6 +183,8 @@ void expectSameRegion(const R& a, const R& b)
     EXPECT_EQ(a.getPlacement(), b.getPlacement());
     EXPECT_EQ(a.getPlacementFeature(), b.getPlacementFeature());
     EXPECT_EQ(a.getSceneScale(), b.getSceneScale());
+    EXPECT_DOUBLE_EQ(a.getLineWidth(), b.getLineWidth());
+    EXPECT_EQ(a.getLineColor(), b.getLineColor());
 }
 
 void expectSameConfiguration(const TC& a, const TC& b)
@@ -675,6 +679,10 @@ TEST(ScenarioSerializationTest, MalformedValuesInTextFilesNameTheProblem)
          "TransitionConfiguration: unknown Combination 'MEDIAN'"},
         {"shape", "Shape POLYLINE", "Shape TRIANGLE", "RegionOfInterest: unknown Shape 'TRIANGLE'"},
         {"shape-lowercase", "Shape POLYLINE", "Shape polyline", "RegionOfInterest: unknown Shape 'polyline'"},
+        {"line-width", "LineWidth 6", "LineWidth 65",
+         "RegionOfInterest: line width 65.000000 must be finite and in [0, 64] pixels"},
+        {"line-width-negative", "LineWidth 6", "LineWidth -1",
+         "RegionOfInterest: line width -1.000000 must be finite and in [0, 64] pixels"},
         // Counts above the limits.
         {"configurations", "Configurations 4 {", "Configurations 4000000000 {",
          "UsageScenario: Configurations count 4000000000 is above the limit of 65536"},

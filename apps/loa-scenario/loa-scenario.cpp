@@ -120,6 +120,11 @@ unless --force. Edits:
                                     coordinates are longitude/latitude (or the file's
                                     own reference system), else scene x/y
     clear-regions
+    region-line NAME|all WIDTH [R,G,B[,A]]
+                                    draws the region (or every region) as a line on
+                                    the ground, WIDTH pixels wide (0: not drawn, at
+                                    most 64), colour components in [0, 1] (default
+                                    0.216,0.494,0.722: ColorBrewer Set1 blue)
 )";
 const char* kExplainDescription =
     R"(Loads MODEL (default: the demo city, demo.loacity; several are one scene), classifies it,
@@ -300,8 +305,14 @@ std::string regionText(const RegionOfInterest& r)
                                           : std::string("(tallest)"));
     }
     o << ", radius " << num(r.getRadius(), 12) << (r.getSceneScale() ? " S" : "");
+    if (r.getLineWidth() > 0.0)
+    {
+        const osg::Vec4f& c = r.getLineColor();
+        o << ", drawn as a " << num(r.getLineWidth(), 6) << " px line of colour " << num(c.r(), 4) << ","
+          << num(c.g(), 4) << "," << num(c.b(), 4) << " (opacity " << num(c.a(), 4) << ")";
+    }
     if (r.getPlacement() == RegionOfInterest::LONGEST_STREET)
-        return o.str() + " (vertices: the model's longest street chain)";
+        return o.str() + " (vertices: a route along the model's streets)";
     o << ", " << r.getVertices().size()
       << (r.getPlacement() != RegionOfInterest::ABSOLUTE ? " vertex offsets" : " vertices")
       << (r.getSceneScale() ? " (times S)" : "") << ":";
@@ -515,7 +526,12 @@ void showJson(const Loaded& l)
           << ", \"placement\": " << jstr(RegionOfInterest::toString(r->getPlacement()))
           << ", \"placement-feature\": " << r->getPlacementFeature()
           << ", \"scene-scale\": " << (r->getSceneScale() ? "true" : "false")
-          << ", \"radius\": " << jnum(r->getRadius(), 12) << ", \"vertices\": [";
+          << ", \"radius\": " << jnum(r->getRadius(), 12)
+          << ", \"line-width\": " << jnum(r->getLineWidth(), 6) << ", \"line-color\": "
+          << jvec(
+                 {r->getLineColor().r(), r->getLineColor().g(), r->getLineColor().b(), r->getLineColor().a()},
+                 6)
+          << ", \"vertices\": [";
         bool firstVertex = true;
         for (const osg::Vec2d& v : r->getVertices())
             o << (firstVertex ? "" : ", ") << jvec({v.x(), v.y()}, 12), firstVertex = false;
@@ -780,8 +796,8 @@ struct Editor
         else if (key == "colors")
         {
             if (lowered != "none" && !osgLoA::ColorScheme::find(lowered))
-                throw loa::UsageError("colors=" + value + ": not a colour scheme (" + osgLoA::ColorScheme::names() +
-                                      ", or none)");
+                throw loa::UsageError("colors=" + value + ": not a colour scheme (" +
+                                      osgLoA::ColorScheme::names() + ", or none)");
             scenario.setColorScheme(lowered == "none" ? std::string() : lowered);
         }
         else if (key == "interest" && !haveConfiguration)
@@ -929,6 +945,39 @@ struct Editor
         r->setName("region-" + std::to_string(scenario.getRegions().size() + 1));
         scenario.addRegion(r.get());
     }
+
+    void setRegionLine(const std::string& name, const std::string& widthText, const std::string& colorText)
+    {
+        const double width = number("region-line width", widthText);
+        if (!(width >= 0.0 && width <= RegionOfInterest::kMaxLineWidth))
+            throw loa::UsageError("region-line: width " + widthText + " is outside [0, " +
+                                  std::to_string(int(RegionOfInterest::kMaxLineWidth)) + "] pixels");
+        osg::Vec4f color = RegionOfInterest::defaultLineColor();
+        if (!colorText.empty())
+        {
+            const std::vector<std::string> c = split(colorText, ',');
+            if (c.size() != 3 && c.size() != 4)
+                throw loa::UsageError("region-line: colour '" + colorText + "' is not R,G,B or R,G,B,A");
+            for (std::size_t k = 0; k < c.size(); ++k)
+            {
+                const double v = number("region-line colour", c[k]);
+                if (!(v >= 0.0 && v <= 1.0))
+                    throw loa::UsageError("region-line: colour component " + c[k] + " is outside [0, 1]");
+                color[int(k)] = float(v);
+            }
+        }
+        unsigned changed = 0;
+        for (const auto& r : scenario.getRegions())
+            if (r.valid() && (name == "all" || r->getName() == name))
+            {
+                r->setLineWidth(width);
+                if (!colorText.empty()) r->setLineColor(color);
+                ++changed;
+            }
+        if (changed == 0)
+            throw loa::UsageError("region-line: the scenario has no region named '" + name + "'" +
+                                  (scenario.getRegions().empty() ? " (it has no region)" : ""));
+    }
 };
 
 struct SetOptions
@@ -1008,10 +1057,18 @@ int cmdSet(const SetOptions& o)
         }
         else if (w == "clear-regions")
             scenario->getRegions().clear();
+        else if (w == "region-line")
+        {
+            const std::string name = need("a region NAME (or all), a WIDTH");
+            const std::string widthText = need("a WIDTH in pixels");
+            std::string colorText;
+            if (i + 1 < words.size() && words[i + 1].find(',') != std::string::npos) colorText = words[++i];
+            ed.setRegionLine(name, widthText, colorText);
+        }
         else
             throw loa::UsageError("unknown edit '" + w +
                                   "' (KEY=VALUE, add-configuration, remove-configuration, "
-                                  "add-region, clear-regions; see --help)");
+                                  "add-region, clear-regions, region-line; see --help)");
     }
     scenario->dirty();
     return validateAndWrite(*scenario, file, force);

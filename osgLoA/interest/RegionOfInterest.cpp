@@ -59,7 +59,8 @@ RegionOfInterest::RegionOfInterest(Shape shape, const Vertices& vertices, double
 
 RegionOfInterest::RegionOfInterest(const RegionOfInterest& other, const osg::CopyOp& copyop)
     : osg::Object(other, copyop), _shape(other._shape), _vertices(other._vertices), _radius(other._radius),
-      _placement(other._placement), _placementFeature(other._placementFeature), _sceneScale(other._sceneScale)
+      _placement(other._placement), _placementFeature(other._placementFeature),
+      _sceneScale(other._sceneScale), _lineWidth(other._lineWidth), _lineColor(other._lineColor)
 {
 }
 
@@ -98,6 +99,15 @@ void RegionOfInterest::setRadius(double radius)
         throw std::invalid_argument("region of interest radius " + std::to_string(radius) +
                                     " must be finite and not negative");
     _radius = radius;
+}
+
+void RegionOfInterest::setLineWidth(double pixels)
+{
+    if (!std::isfinite(pixels) || pixels < 0.0 || pixels > kMaxLineWidth)
+        throw std::invalid_argument("region of interest line width " + std::to_string(pixels) +
+                                    " must be finite and in [0, " + std::to_string(int(kMaxLineWidth)) +
+                                    "] pixels");
+    _lineWidth = pixels;
 }
 
 double RegionOfInterest::distance(const osg::Vec2d& p) const
@@ -147,6 +157,11 @@ std::string RegionOfInterest::validate() const
     for (const osg::Vec2d& v : _vertices)
         if (!std::isfinite(v.x()) || !std::isfinite(v.y())) return label + " has a non-finite vertex";
     if (!std::isfinite(_radius) || _radius < 0.0) return label + " has an invalid radius";
+    if (!std::isfinite(_lineWidth) || _lineWidth < 0.0 || _lineWidth > kMaxLineWidth)
+        return label + " has a line width outside [0, " + std::to_string(int(kMaxLineWidth)) + "] pixels";
+    for (int k = 0; k < 4; ++k)
+        if (!std::isfinite(_lineColor[k]) || _lineColor[k] < 0.0f || _lineColor[k] > 1.0f)
+            return label + " has a line colour component outside [0, 1]";
     if (_shape == POLYGON)
     {
         double area2 = 0.0;

@@ -1,5 +1,6 @@
 // LoANode: binds and evaluates a usage scenario during cull.
 #include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/RouteLine>
 
 #include <osgLoA/transitions/TransitionUniforms>
 
@@ -107,6 +108,7 @@ void LoANode::bind()
     _index.updateBounds();
     _visible.assign(_index.size(), 0);
     _renderer->unbind();
+    if (getStateSet()) RouteLine::apply(*getStateSet(), RouteLine::Segments());
     if (!_scenario.valid()) return;
     try
     {
@@ -123,6 +125,8 @@ void LoANode::bind()
         ss->setDataVariance(osg::Object::DYNAMIC);
         TransitionUniforms::applyScenario(*ss, *_evaluator);
         setUpDistanceField();
+        // The regions as ScenarioFitting placed them (the longest street's route).
+        RouteLine::apply(*ss, RouteLine::collect(fitted->getRegions()));
         _renderer->bind(*_evaluator, _index);
         if (fitted->getFocusFeature() != 0 && !_evaluator->getView().focus.valid())
             OSG_WARN << "osgLoA::LoANode: scenario '" << _scenario->getName() << "' focuses on feature "

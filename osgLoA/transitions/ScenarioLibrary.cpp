@@ -61,6 +61,8 @@ const char* const kExtensions[] = {"osgt", "osgb", "osgx"};
 // blend per fragment; buildings blend as whole objects.
 const TransitionConfiguration::FeatureTypes kAreaTypes = {FeatureType::Street, FeatureType::Water,
                                                           FeatureType::Green, FeatureType::Terrain};
+// The route drawn on the ground in the route and navigation scenarios (RouteLine), pixels.
+constexpr double kRouteLineWidth = 6.0;
 const TransitionConfiguration::FeatureTypes kObjectTypes = {FeatureType::Building, FeatureType::Generic};
 
 osg::ref_ptr<TransitionConfiguration> config(const std::string& name, const std::string& style,
@@ -254,15 +256,19 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
     if (name == "route")
     {
         // Figure 9C: features along a route in detail, the context cartographic.
-        auto s = makeScenario(name,
-                              "Route highlighting (paper 004 Figure 9C): the route runs along the scene's "
-                              "longest chain of touching streets; photorealistic within 0.04 S of its centre "
-                              "line, fading smoothly to cartographic 0.15 S away, where S is the scene's "
-                              "size (half its horizontal diagonal; 1090 m on the demo city: 44 m, 164 m).");
+        auto s = makeScenario(
+            name, "Route highlighting (paper 004 Figure 9C): the route runs along the scene's "
+                  "streets (the longest route through their network where they have centre lines, "
+                  "as OSM ways do, else their longest chain of touching features); photorealistic within "
+                  "0.04 S of its centre "
+                  "line, fading smoothly to cartographic 0.15 S away, where S is the scene's "
+                  "size (half its horizontal diagonal; 1090 m on the demo city: 44 m, 164 m). The route "
+                  "itself is drawn on the ground as a 6 px blue line with a casing.");
         osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE, {}, 0.01);
         route->setName("route");
         route->setPlacement(RegionOfInterest::LONGEST_STREET);
         route->setSceneScale(true);
+        route->setLineWidth(kRouteLineWidth); // the route on the map (RouteLine)
         s->addRegion(route.get());
         osg::ref_ptr<M> region = new M(M::REGION, 0.03, 0.14);
         region->setScale(M::SCENE);
@@ -330,17 +336,19 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         auto s = makeScenario(
             name, "Car navigation (paper 004 §4.1): the vertical view angle (detailed below 25 degrees, "
                   "map-like above 60, weight 1), the view distance (detailed within 0.35 D, map-like "
-                  "beyond 2 D, weight 2) and the route along the scene's longest street chain (detailed "
+                  "beyond 2 D, weight 2) and the route along the scene's streets (detailed "
                   "within 0.03 S of it, map-like 0.14 S away, weight 2) blend a detailed foreground and "
                   "route into a map-like background: streets as a road map, water "
                   "waterlined, green spaces with signatures, terrain as relief, buildings cartographic, in "
-                  "the brewer-subtypes colours; landmarks (static interest >= 0.8) stay photorealistic "
+                  "the brewer-subtypes colours; the route is drawn on the ground as a 6 px blue line; "
+                  "landmarks (static interest >= 0.8) stay photorealistic "
                   "and turn their best view to the viewer (§3.2.2).");
         s->setColorScheme("brewer-subtypes");
         osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE, {}, 0.01);
         route->setName("route");
         route->setPlacement(RegionOfInterest::LONGEST_STREET);
         route->setSceneScale(true);
+        route->setLineWidth(kRouteLineWidth);
         s->addRegion(route.get());
         osg::ref_ptr<M> region = new M(M::REGION, 0.03, 0.14, 1.0);
         region->setScale(M::SCENE);

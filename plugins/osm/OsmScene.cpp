@@ -490,6 +490,12 @@ public:
             f->setSourceId(it.object->sourceId);
             f->setSourceType(it.c.sourceType);
             if (it.c.kind == Kind::Building) f->setLod(1.0f);
+            if (it.c.kind == Kind::Road || it.c.kind == Kind::WaterLine)
+            {
+                // The way's nodes as the ribbon was built from them (metres, the scene frame).
+                Ring line = it.object->line;
+                if (cleanLine(line)) f->setCentreline(line);
+            }
             for (const auto& kv : it.object->tags)
                 node->setUserValue("osm." + kv.first, kv.second);
             _groups[groupOf(it.c.type)]->addChild(node.get());

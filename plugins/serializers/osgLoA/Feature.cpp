@@ -1,6 +1,7 @@
 // Serializer wrapper for osgLoA::Feature (.osgt/.osgb/.osgx).
 #include <osgLoA/semantics/Feature>
 
+#include "BoundedListSerializer.h"
 #include "FeatureTypeSerializer.h"
 
 #include "EnumByNameSerializer.h"
@@ -28,5 +29,8 @@ REGISTER_OBJECT_WRAPPER(osgLoA_Feature, new osgLoA::Feature, osgLoA::Feature, "o
     ADD_FLOAT_SERIALIZER(Lod, -1.0f);
     ADD_STRING_SERIALIZER(SourceId, "");
     ADD_STRING_SERIALIZER(SourceType, "");
+    // Issue 19 (routes along the street network): after the older fields; the vertex count is
+    // bounded like a region's.
+    ADD_BOUNDED_VECTOR_SERIALIZER(Centreline, osgLoA::Feature::Centreline, osgDB::BaseSerializer::RW_VEC2D, 1);
 }
 // clang-format on

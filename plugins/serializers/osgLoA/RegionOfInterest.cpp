@@ -1,7 +1,7 @@
 // Serializer wrapper for osgLoA::RegionOfInterest (.osgt/.osgb/.osgx). The radius is a user
 // serializer so that a negative or non-finite value fails the read with a message instead of
 // throwing out of osgDB; the shape reads by name only (EnumByNameSerializer) and the vertex
-// count is bounded (BoundedListSerializer.h).
+// count is bounded (BoundedListSerializer.h). The line width is checked like the radius.
 #include <osgLoA/interest/RegionOfInterest>
 
 #include "BoundedListSerializer.h"
@@ -23,6 +23,8 @@ bool checkRadius(const osgLoA::RegionOfInterest& r)
 
 bool readRadius(osgDB::InputStream& is, osgLoA::RegionOfInterest& r)
 {
+    // After an earlier field failed, the bytes here are not a radius: keep that first error.
+    if (is.getException()) return false;
     double v = 0.0;
     is >> v;
     if (!std::isfinite(v) || v < 0.0)
@@ -37,6 +39,33 @@ bool readRadius(osgDB::InputStream& is, osgLoA::RegionOfInterest& r)
 bool writeRadius(osgDB::OutputStream& os, const osgLoA::RegionOfInterest& r)
 {
     os << r.getRadius() << std::endl;
+    return true;
+}
+
+bool checkLineWidth(const osgLoA::RegionOfInterest& r)
+{
+    return r.getLineWidth() != 0.0;
+}
+
+bool readLineWidth(osgDB::InputStream& is, osgLoA::RegionOfInterest& r)
+{
+    if (is.getException()) return false; // keep the first error (readRadius)
+    double v = 0.0;
+    is >> v;
+    if (!std::isfinite(v) || v < 0.0 || v > osgLoA::RegionOfInterest::kMaxLineWidth)
+    {
+        is.throwException("RegionOfInterest: line width " + std::to_string(v) +
+                          " must be finite and in [0, " +
+                          std::to_string(int(osgLoA::RegionOfInterest::kMaxLineWidth)) + "] pixels");
+        return false;
+    }
+    r.setLineWidth(v);
+    return true;
+}
+
+bool writeLineWidth(osgDB::OutputStream& os, const osgLoA::RegionOfInterest& r)
+{
+    os << r.getLineWidth() << std::endl;
     return true;
 }
 } // namespace
@@ -60,4 +89,8 @@ REGISTER_OBJECT_WRAPPER(osgLoA_RegionOfInterest, new osgLoA::RegionOfInterest, o
     END_ENUM_SERIALIZER();
     ADD_UINT_SERIALIZER(PlacementFeature, 0u);
     ADD_BOOL_SERIALIZER(SceneScale, false);
+    // Issue 19 (the route drawn on the map): after the older fields. The colour is checked by
+    // validate() (UsageScenario::validate), as every reader of scenario files calls it.
+    ADD_USER_SERIALIZER(LineWidth);
+    ADD_VEC4F_SERIALIZER(LineColor, osgLoA::RegionOfInterest::defaultLineColor());
 }
