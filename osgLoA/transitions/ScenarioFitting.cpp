@@ -90,6 +90,18 @@ void simplify(const std::vector<osg::Vec2d>& in, std::size_t a, std::size_t b, d
     simplify(in, at, b, tolerance, keep);
 }
 
+/** The path (two or more vertices) simplified: its end points and the vertices simplify keeps. */
+std::vector<osg::Vec2d> simplified(const std::vector<osg::Vec2d>& path, double tolerance)
+{
+    std::vector<bool> keep(path.size(), false);
+    keep.front() = keep.back() = true;
+    simplify(path, 0, path.size() - 1, tolerance, keep);
+    std::vector<osg::Vec2d> out;
+    for (std::size_t i = 0; i < path.size(); ++i)
+        if (keep[i]) out.push_back(path[i]);
+    return out;
+}
+
 const Feature* tallest(const FeatureIndex& index)
 {
     const Feature* best = nullptr;
@@ -220,13 +232,7 @@ std::vector<osg::Vec2d> streetNetworkRoute(const FeatureIndex& index, double tol
     std::reverse(path.begin(), path.end());
     if (features) *features = unsigned(used.size());
     if (path.size() < 2) return {};
-    std::vector<bool> keep(path.size(), false);
-    keep.front() = keep.back() = true;
-    simplify(path, 0, path.size() - 1, tolerance, keep);
-    std::vector<osg::Vec2d> out;
-    for (std::size_t i = 0; i < path.size(); ++i)
-        if (keep[i]) out.push_back(path[i]);
-    return out;
+    return simplified(path, tolerance);
 }
 } // namespace
 
@@ -306,13 +312,7 @@ std::vector<osg::Vec2d> ScenarioFitting::longestStreetChain(const FeatureIndex& 
     std::reverse(path.begin(), path.end());
     if (features) *features = unsigned(path.size());
     if (path.size() == 1) return path;
-    std::vector<bool> keep(path.size(), false);
-    keep.front() = keep.back() = true;
-    simplify(path, 0, path.size() - 1, tolerance, keep);
-    std::vector<osg::Vec2d> out;
-    for (std::size_t i = 0; i < path.size(); ++i)
-        if (keep[i]) out.push_back(path[i]);
-    return out;
+    return simplified(path, tolerance);
 }
 
 void ScenarioFitting::fit(const UsageScenario& scenario, const FeatureIndex& index)
