@@ -1,18 +1,27 @@
-// shaders/loa_landmark.vert.glsl against its CPU twin (LandmarkDeformation): a test program
+// shaders/loa_landmark.vert.glsl against its CPU twin (LandmarkDeformation), and map sinking in
+// whole frames (below). The twin: a test program
 // calls loa_deformVertex and loa_deformNormal for the vertices of a few features and draws each
 // vertex as one point into its own pixel of two float targets (deformed position, deformed
 // normal), which are read back and compared with the CPU.
 #include "support/TestSupport.h"
+#include "support/TopDownView.h"
 
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/transitions/LandmarkDeformation>
+#include <osgLoA/transitions/LoANode>
+#include <osgLoA/transitions/ScenarioLibrary>
 
 #include <osg/Camera>
+#include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/Program>
+#include <osg/ShapeDrawable>
 #include <osg/Uniform>
 #include <osg/io_utils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
 
@@ -253,4 +262,143 @@ TEST(LandmarkDeformationGLTest, ShaderMatchesTheCpu)
             EXPECT_TRUE(near(pixel(*positions, f.first + int(i)), f.points[i], 1e-6));
             EXPECT_TRUE(near(pixel(*normals, f.first + int(i)), unit(f.normals[i]), 1e-6));
         }
+}
+
+// Non-landmarks shrink and sink where a scenario draws them as a map (paper 004 §3.2.2, Figure 1;
+// sinkFollowsMapStyles, the view-angle and navigation scenarios of the library): seen from
+// straight above, where the view-angle scenario is a map, the frame of a town equals the frame of
+// its ground and landmark alone (the houses are under the ground) at 1920x1080, an odd size and in
+// an offset viewport; seen from the street, where it is detailed, the houses stand. On West
+// Oakland (OpenStreetMap) the same holds for its buildings.
+namespace sinking
+{
+osg::ref_ptr<osg::Node> box(unsigned id, const osg::Vec3& centre, float size, float height, bool landmark)
+{
+    osg::ref_ptr<osg::Geode> g = new osg::Geode;
+    g->addDrawable(
+        new osg::ShapeDrawable(new osg::Box(centre + osg::Vec3(0, 0, 0.5f * height), size, size, height)));
+    osg::ref_ptr<Feature> f = new Feature(id, FeatureType::Building, "", Feature::MODEL_DATA);
+    f->setLandmark(landmark);
+    if (landmark) f->setInterest(1.0f);
+    Feature::attach(*g, f.get());
+    return g;
+}
+
+/** Ground 800 m square, a landmark tower at the centre, and (with houses) 36 houses around it. */
+osg::ref_ptr<osg::Group> town(bool houses)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(loatest::featureQuad(1, FeatureType::Terrain, "", -400, -400, 400, 400).get());
+    root->addChild(box(2, osg::Vec3(0, 0, 0), 30.0f, 120.0f, true).get());
+    unsigned id = 10;
+    if (houses)
+        for (int i = -3; i < 3; ++i)
+            for (int j = -3; j < 3; ++j)
+                if (i != -1 && i != 0 && j != -1 && j != 0)
+                    root->addChild(
+                        box(id++, osg::Vec3(60.0f * i + 30.0f, 60.0f * j + 30.0f, 0), 24.0f, 18.0f, false)
+                            .get());
+    return root;
+}
+
+osg::ref_ptr<osg::Image> frame(osg::Node* model, const osg::Vec3d& eye, const osg::Vec3d& centre,
+                               const osg::Vec3d& up, int width, int height, const loatest::Viewport& vp)
+{
+    return loatest::throughLoA(model, ScenarioLibrary::createBuiltin("view-angle").get(), width, height, vp,
+                               [&](OffscreenRenderer& r)
+                               {
+                                   r.getCamera()->setProjectionMatrixAsPerspective(40.0, double(vp.w) / vp.h,
+                                                                                   5.0, 5000.0);
+                                   r.setViewMatrixAsLookAt(eye, centre, up);
+                               });
+}
+
+long differing(const osg::Image& a, const osg::Image& b)
+{
+    long n = 0;
+    for (int y = 0; y < a.t(); ++y)
+        for (int x = 0; x < a.s(); ++x)
+        {
+            const unsigned char *p = a.data(x, y), *q = b.data(x, y);
+            n += std::abs(int(p[0]) - int(q[0])) > 2 || std::abs(int(p[1]) - int(q[1])) > 2 ||
+                 std::abs(int(p[2]) - int(q[2])) > 2;
+        }
+    return n;
+}
+
+void expectSunkFromAboveStandingFromTheStreet(int width, int height, const loatest::Viewport& vp)
+{
+    osg::ref_ptr<osg::Node> withHouses = town(true), without = town(false);
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    // From 900 m straight above: every view angle is over 60 degrees (map).
+    const osg::Vec3d above(0, 0, 900), north(0, 1, 0), up(0, 0, 1);
+    osg::ref_ptr<osg::Image> a = frame(withHouses.get(), above, osg::Vec3d(), north, width, height, vp);
+    osg::ref_ptr<osg::Image> b = frame(without.get(), above, osg::Vec3d(), north, width, height, vp);
+    loatest::keepFrame("map-sinking", *a, "above-" + size);
+    const long fromAbove = differing(*a, *b);
+    // From the street, 10 m up and 380 m south: angles of 1-5 degrees (detail).
+    const osg::Vec3d street(0, -380, 10);
+    osg::ref_ptr<osg::Image> c = frame(withHouses.get(), street, osg::Vec3d(0, 0, 10), up, width, height, vp);
+    osg::ref_ptr<osg::Image> d = frame(without.get(), street, osg::Vec3d(0, 0, 10), up, width, height, vp);
+    loatest::keepFrame("map-sinking", *c, "street-" + size);
+    const long fromStreet = differing(*c, *d);
+    const double pixels = double(vp.w) * vp.h;
+    std::cout << size << ": from above " << fromAbove << " pixels differ, from the street " << fromStreet
+              << " (" << 100.0 * fromStreet / pixels << " %)\n";
+    EXPECT_EQ(fromAbove, 0);
+    EXPECT_GT(double(fromStreet), 0.01 * pixels);
+}
+} // namespace sinking
+using namespace sinking;
+
+TEST(LandmarkDeformationGLTest, HousesSinkInTheMapAndStandInDetailAt1920x1080)
+{
+    expectSunkFromAboveStandingFromTheStreet(1920, 1080, loatest::Viewport{0, 0, 1920, 1080});
+}
+
+TEST(LandmarkDeformationGLTest, HousesSinkInTheMapAndStandInDetailAtAnOddSizeAndInAnOffsetViewport)
+{
+    expectSunkFromAboveStandingFromTheStreet(641, 359, loatest::Viewport{0, 0, 641, 359});
+    expectSunkFromAboveStandingFromTheStreet(577, 343, loatest::Viewport{37, 21, 500, 300});
+}
+
+// West Oakland (OpenStreetMap): from 3 km straight above (a map everywhere) the frame equals the
+// frame with its buildings hidden (none is a landmark: they are under the ground), and from a low
+// oblique camera it does not.
+TEST(LandmarkDeformationGLTest, TheBuildingsOfARealOsmFileSinkInTheMap)
+{
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/West-Oakland.osm";
+    if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(model.valid());
+    FeatureIndex index(*model);
+    std::vector<osg::Node*> buildings;
+    for (const FeatureIndex::Entry& e : index.entries())
+    {
+        osg::ref_ptr<osg::Node> node;
+        if (e.feature->getType() == FeatureType::Building && !e.feature->getLandmark() && e.node.lock(node))
+            buildings.push_back(node.get());
+    }
+    ASSERT_GT(buildings.size(), 10u);
+    const osg::Vec3d c = model->getBound().center();
+    const int w = 1920, h = 1080;
+    const loatest::Viewport vp{0, 0, w, h};
+    auto both =
+        [&](const osg::Vec3d& eye, const osg::Vec3d& at, const osg::Vec3d& up, const std::string& name)
+    {
+        osg::ref_ptr<osg::Image> shown = frame(model.get(), eye, at, up, w, h, vp);
+        for (osg::Node* b : buildings)
+            b->setNodeMask(0u);
+        osg::ref_ptr<osg::Image> hidden = frame(model.get(), eye, at, up, w, h, vp);
+        for (osg::Node* b : buildings)
+            b->setNodeMask(~0u);
+        loatest::keepFrame("map-sinking", *shown, name);
+        return differing(*shown, *hidden);
+    };
+    const long fromAbove = both(c + osg::Vec3d(0, 0, 3000), c, osg::Vec3d(0, 1, 0), "west-oakland-above");
+    const long fromLow = both(c + osg::Vec3d(0, -500, 30), c, osg::Vec3d(0, 0, 1), "west-oakland-low");
+    std::cout << "west-oakland (" << buildings.size() << " buildings): from above " << fromAbove
+              << " pixels differ, from a low camera " << fromLow << "\n";
+    EXPECT_EQ(fromAbove, 0);
+    EXPECT_GT(fromLow, 1000);
 }

@@ -399,6 +399,41 @@ TEST(LandmarkDeformationTest, NonLandmarksShrinkAndSink)
     EXPECT_FALSE(d->computeFrame(building, view).isIdentity());
 }
 
+// With sinkFollowsMapStyles the amount is the feature's weight of map-like configurations
+// (FeatureInput::mapWeight, clamped to [0, 1]), not the driver's map-likeness (which is 1 here);
+// unknown (negative) falls back to the driver; landmarks keep the driver for their morph.
+TEST(LandmarkDeformationTest, SinkingCanFollowTheScenariosMapWeight)
+{
+    osg::ref_ptr<LD> d = only(true, true, true, true);
+    d->setSinkingEnabled(true);
+    d->setSinkFollowsMapStyles(true);
+    LD::FeatureInput building = landmark();
+    building.landmark = false;
+    const LD::View view = LD::View::lookAt(kCentre + osg::Vec3d(0, 300, 300), kCentre, osg::Vec3d(0, 0, 1));
+    building.mapWeight = 0.25;
+    LD::FeatureFrame f = d->computeFrame(building, view);
+    EXPECT_DOUBLE_EQ(f.mapLikeness, 1.0);
+    EXPECT_DOUBLE_EQ(f.sink, 0.25);
+    // b + (1 - 0.25 x 0.5) (5, 10, 30) - (0, 0, 0.25 x 30).
+    expectDeformed(f, osg::Vec3d(110, 220, 30),
+                   osg::Vec3d(105, 210, 0) + osg::Vec3d(5, 10, 30) * 0.875 - osg::Vec3d(0, 0, 7.5));
+    building.mapWeight = 0.0;
+    EXPECT_TRUE(d->computeFrame(building, view).isIdentity()) << "drawn in detail: stays";
+    building.mapWeight = 3.0;
+    EXPECT_DOUBLE_EQ(d->computeFrame(building, view).sink, 1.0);
+    building.mapWeight = -1.0;
+    EXPECT_DOUBLE_EQ(d->computeFrame(building, view).sink, 1.0) << "unknown: the driver";
+    LD::FeatureInput mark = landmark();
+    mark.mapWeight = 0.0;
+    EXPECT_GT(d->computeFrame(mark, view).morph, 0.0) << "landmarks keep the driver";
+    // The map styles.
+    EXPECT_TRUE(d->isMapStyle("streets"));
+    EXPECT_FALSE(d->isMapStyle("photorealistic"));
+    d->setMapStyles({"blueprint"});
+    EXPECT_TRUE(d->isMapStyle("blueprint"));
+    EXPECT_FALSE(d->isMapStyle("cartographic"));
+}
+
 TEST(LandmarkDeformationTest, ValidationNamesTheProblem)
 {
     auto problem = [](void (*change)(LD&))
@@ -527,6 +562,8 @@ osg::ref_ptr<LD> everyFieldChanged()
     d->setSinkTypes({FeatureType::Building, FeatureType::Generic, FeatureType::Green});
     d->setShrinkFactor(0.375);
     d->setSinkFactor(1.25);
+    d->setSinkFollowsMapStyles(true);
+    d->setMapStyles({"cartographic", "my \"map\" style"});
     return d;
 }
 
@@ -550,6 +587,8 @@ void expectSame(const LD& a, const LD& b)
     EXPECT_EQ(a.getSinkTypes(), b.getSinkTypes());
     EXPECT_DOUBLE_EQ(a.getShrinkFactor(), b.getShrinkFactor());
     EXPECT_DOUBLE_EQ(a.getSinkFactor(), b.getSinkFactor());
+    EXPECT_EQ(a.getSinkFollowsMapStyles(), b.getSinkFollowsMapStyles());
+    EXPECT_EQ(a.getMapStyles(), b.getMapStyles());
 }
 } // namespace
 
@@ -583,8 +622,9 @@ TEST(LandmarkDeformationTest, SerializerRoundTrips)
     }
     // The text names the fields.
     const std::string text = fileBytes(dir + "/changed-first.osgt");
-    for (const char* field : {"ScalingEnabled FALSE", "SinkingEnabled TRUE", "DriverKind VIEW_DISTANCE",
-                              "MaxTiltDegrees 72.5", "SinkTypes 3", "generic", "SinkFactor 1.25"})
+    for (const char* field :
+         {"ScalingEnabled FALSE", "SinkingEnabled TRUE", "DriverKind VIEW_DISTANCE", "MaxTiltDegrees 72.5",
+          "SinkTypes 3", "generic", "SinkFactor 1.25", "SinkFollowsMapStyles TRUE", "MapStyles 2"})
         EXPECT_NE(text.find(field), std::string::npos) << field << "\n" << text;
 }
 
@@ -597,7 +637,11 @@ TEST(LandmarkDeformationTest, ScenarioFilesWithoutItReadAsNone)
     osg::ref_ptr<UsageScenario> v =
         ScenarioLibrary::readFile(std::string(LOA_SOURCE_DIR) + "/data/scenarios/view-angle.osgt");
     ASSERT_NE(v->getLandmarkDeformation(), nullptr);
-    expectSame(*v->getLandmarkDeformation(), *osg::ref_ptr<LD>(new LD));
+    // The defaults, with sinking by the map styles' weight (issue 19).
+    osg::ref_ptr<LD> expected = new LD;
+    expected->setSinkingEnabled(true);
+    expected->setSinkFollowsMapStyles(true);
+    expectSame(*v->getLandmarkDeformation(), *expected);
     // The copy constructor copies it (deep copies are their own objects).
     osg::ref_ptr<UsageScenario> copy = osg::clone(v.get(), osg::CopyOp::DEEP_COPY_ALL);
     ASSERT_NE(copy->getLandmarkDeformation(), nullptr);

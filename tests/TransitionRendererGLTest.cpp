@@ -1,22 +1,27 @@
 // The LoA node's rendering (TransitionRenderer, docs/rendering.md): Algorithm 1's draws per
 // configuration and feature, zero-weight culling, the blend of two styles at one surface, and
-// golden images of the demo city under the library's scenarios.
+// golden images of the demo city under the library's scenarios and of every cartographic style.
 #include "support/TestSupport.h"
+#include "support/TopDownView.h"
 
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/Feature>
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageCompare>
 
+#include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/ShapeDrawable>
 #include <osg/Texture2D>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
 
@@ -585,6 +590,24 @@ TEST(TransitionRendererGLTest, TwoHalfWeightsOfOneSurfaceGiveTheMeanOfTheStyles)
 
 namespace
 {
+/** The frame against tests/data/golden/NAME.png (LOA_UPDATE_GOLDENS=1 writes it instead). */
+void expectGolden(const std::string& name, const osg::Image& actual)
+{
+    osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate(name + ".png", actual);
+    if (!golden)
+    {
+        std::cout << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png\n";
+        return;
+    }
+    // The bars of DemoCityImageGLTest: a channel may differ by 16/255 before its pixel fails
+    // (llvmpipe builds round filtering and blending differently); mean <= 1/255; at most 0.5%
+    // failing pixels (silhouette and texel flips at edges).
+    const auto cmp = ImageComparison::compare(actual, *golden, 16);
+    const bool ok = cmp.sizesMatch && cmp.meanDifference <= 1.0 && cmp.failingFraction <= 0.005;
+    if (!ok) loatest::saveFailure(name, actual, cmp.difference.get());
+    EXPECT_TRUE(ok) << name << ": " << cmp.summary();
+}
+
 /** Renders the demo city under a library scenario from a named camera at 320x240 and compares
  *  with the golden; `stats` gets the LoA node's statistics of the frame. */
 void compareScenarioGolden(const std::string& scenario, const std::string& camera = "oblique",
@@ -603,17 +626,8 @@ void compareScenarioGolden(const std::string& scenario, const std::string& camer
     r->setPerspective(pose.fovy);
     r->setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
     osg::ref_ptr<osg::Image> actual = r->renderImage();
-    const std::string name = "scenario-" + scenario + "-" + camera + "-320x240";
-    osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate(name + ".png", *actual);
     if (stats) *stats = loa->getRenderer()->getStatistics();
-    if (!golden) GTEST_SKIP() << "LOA_UPDATE_GOLDENS=1: wrote tests/data/golden/" << name << ".png";
-    // The bars of DemoCityImageGLTest: a channel may differ by 16/255 before its pixel fails
-    // (llvmpipe builds round filtering and blending differently); mean <= 1/255; at most 0.5%
-    // failing pixels (silhouette and texel flips at edges).
-    const auto cmp = ImageComparison::compare(*actual, *golden, 16);
-    const bool ok = cmp.sizesMatch && cmp.meanDifference <= 1.0 && cmp.failingFraction <= 0.005;
-    if (!ok) loatest::saveFailure(name, *actual, cmp.difference.get());
-    EXPECT_TRUE(ok) << name << ": " << cmp.summary();
+    expectGolden("scenario-" + scenario + "-" + camera + "-320x240", *actual);
     EXPECT_GT(loa->getRenderer()->getStatistics().drawnFeatures, 100u);
 }
 } // namespace
@@ -649,6 +663,13 @@ TEST(TransitionRendererGLTest, RouteScenarioMatchesGolden)
 TEST(TransitionRendererGLTest, CircularRoiScenarioMatchesGolden)
 {
     compareScenarioGolden("circular-roi");
+}
+
+// The map scenarios of issue 19: every cartographic device, the route line, sunk buildings.
+TEST(TransitionRendererGLTest, LandscapeAndNavigationScenariosMatchGoldens)
+{
+    compareScenarioGolden("landscape");
+    compareScenarioGolden("navigation");
 }
 
 // The blend weights specialized to the scenario's interest groups (LOA_INTEREST_GROUPS,
@@ -691,5 +712,66 @@ TEST(TransitionRendererGLTest, SpecializedBlendWeightsEqualTheGenericOnes)
         EXPECT_TRUE(cmp.sizesMatch);
         EXPECT_LE(cmp.failingFraction, 0.0005) << scenario << ": " << cmp.summary();
         EXPECT_LE(cmp.meanDifference, 0.05) << scenario << ": " << cmp.summary();
+    }
+}
+
+// Goldens of the cartographic styles (paper 004 Figure 8: waterlining, signatures, relief; §3.2.3:
+// streets, and flat cartographic), each drawing the whole scene: the demo city from its oblique
+// camera and West Oakland (OpenStreetMap, a real scene) top-down, at 320x240, against
+// tests/data/golden/cartographic-*.png. What each style changes and where is checked exactly by
+// its own tests (CPU twins, masks); these catch any change of the picture.
+namespace
+{
+const char* const kCartographicStyles[] = {"cartographic", "waterlining", "relief", "signatures", "streets"};
+} // namespace
+
+TEST(TransitionRendererGLTest, EveryCartographicStyleMatchesGoldensOnTheDemoCity)
+{
+    osg::ref_ptr<osg::Group> city = CityGenerator(CityParameters()).generate();
+    for (const char* style : kCartographicStyles)
+    {
+        SCOPED_TRACE(style);
+        OffscreenRenderer::Settings s;
+        s.width = 320;
+        s.height = 240;
+        osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(s);
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(ScenarioLibrary::createHomogeneous(style).get());
+        loa->addChild(city.get());
+        r->setSceneData(loa.get());
+        const CameraPose pose = CityCameras::compute("oblique", *city, 320.0 / 240.0);
+        r->setPerspective(pose.fovy);
+        r->setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+        osg::ref_ptr<osg::Image> actual = r->renderImage();
+        EXPECT_EQ(loa->getBindError(), "");
+        expectGolden(std::string("cartographic-") + style + "-demo-city-oblique-320x240", *actual);
+    }
+}
+
+TEST(TransitionRendererGLTest, EveryCartographicStyleMatchesGoldensOnARealOsmFile)
+{
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/West-Oakland.osm";
+    if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(model.valid());
+    osg::ComputeBoundsVisitor cbv;
+    model->accept(cbv);
+    const osg::BoundingBoxd b = cbv.getBoundingBox();
+    // 600 m x 450 m around its buildings (with its parks and the streets between them).
+    osg::BoundingBoxd buildings;
+    const FeatureIndex index(*model);
+    for (const FeatureIndex::Entry& e : index.entries())
+        if (e.feature->getType() == FeatureType::Building && e.feature->getBound().valid())
+            buildings.expandBy(osg::BoundingBoxd(e.feature->getBound()._min, e.feature->getBound()._max));
+    ASSERT_TRUE(buildings.valid());
+    const osg::Vec3d c = buildings.center();
+    const osg::BoundingBoxd view(c.x() - 300.0, c.y() - 225.0, b.zMin(), c.x() + 300.0, c.y() + 225.0,
+                                 b.zMax());
+    for (const char* style : kCartographicStyles)
+    {
+        SCOPED_TRACE(style);
+        osg::ref_ptr<osg::Image> actual =
+            loatest::topDown(model.get(), style, 320, 240, loatest::Viewport{0, 0, 320, 240}, view);
+        expectGolden(std::string("cartographic-") + style + "-west-oakland-top-320x240", *actual);
     }
 }

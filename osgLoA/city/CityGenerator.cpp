@@ -392,6 +392,17 @@ public:
             }
         }
         osg::ref_ptr<osg::Group> f = feature(FeatureType::Street, major ? "major" : "minor");
+        // The centre line, through every crossing with the other direction's roads (the same
+        // coordinates there, so routes find the junctions: ScenarioFitting).
+        Feature::Centreline centreline;
+        const std::vector<double>& crossings = alongX ? L.roadLinesX : L.roadLinesY;
+        std::vector<double> along = {a0, a1};
+        for (double x : crossings)
+            if (x > a0 && x < a1) along.push_back(x);
+        std::sort(along.begin(), along.end());
+        for (double a : along)
+            centreline.push_back(alongX ? osg::Vec2d(a, c) : osg::Vec2d(c, a));
+        Feature::get(*f)->setCentreline(centreline);
         f->addChild(
             geodeWith(mb.build("TrafficArea"), states.draped(major ? "road-major" : "road-minor")).get());
         return f;

@@ -127,8 +127,19 @@ LandmarkDeformation::LandmarkDeformation(const LandmarkDeformation& other, const
       // The driver is part of this object's value: always its own copy.
       _driver(new SaliencyMetric(*other._driver, osg::CopyOp::DEEP_COPY_ALL)),
       _maxTiltDegrees(other._maxTiltDegrees), _sinkTypes(other._sinkTypes),
-      _shrinkFactor(other._shrinkFactor), _sinkFactor(other._sinkFactor)
+      _shrinkFactor(other._shrinkFactor), _sinkFactor(other._sinkFactor),
+      _sinkFollowsMapStyles(other._sinkFollowsMapStyles), _mapStyles(other._mapStyles)
 {
+}
+
+LandmarkDeformation::StyleNames LandmarkDeformation::defaultMapStyles()
+{
+    return {"cartographic", "waterlining", "relief", "signatures", "streets"};
+}
+
+bool LandmarkDeformation::isMapStyle(const std::string& style) const
+{
+    return std::find(_mapStyles.begin(), _mapStyles.end(), style) != _mapStyles.end();
 }
 
 bool LandmarkDeformation::sinks(FeatureType t) const
@@ -304,7 +315,8 @@ LandmarkDeformation::FeatureFrame LandmarkDeformation::computeFrame(const Featur
     }
     else if (_sinkingEnabled && sinks(in.type))
     {
-        f.sink = f.mapLikeness;
+        f.sink =
+            _sinkFollowsMapStyles && in.mapWeight >= 0.0 ? clampd(in.mapWeight, 0.0, 1.0) : f.mapLikeness;
         f.shrinkFactor = clampd(_shrinkFactor, 0.0, 1.0);
         f.sinkFactor = finite(_sinkFactor) ? std::max(0.0, _sinkFactor) : 0.0;
     }

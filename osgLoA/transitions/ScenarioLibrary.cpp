@@ -61,6 +61,16 @@ const char* const kExtensions[] = {"osgt", "osgb", "osgx"};
 // blend per fragment; buildings blend as whole objects.
 const TransitionConfiguration::FeatureTypes kAreaTypes = {FeatureType::Street, FeatureType::Water,
                                                           FeatureType::Green, FeatureType::Terrain};
+/** §3.2.2's deformation for map-like scenarios: landmarks morph by the default driver,
+ *  non-landmark buildings shrink and sink by their weight of map-like styles. */
+osg::ref_ptr<LandmarkDeformation> mapDeformation()
+{
+    osg::ref_ptr<LandmarkDeformation> d = new LandmarkDeformation;
+    d->setSinkingEnabled(true);
+    d->setSinkFollowsMapStyles(true);
+    return d;
+}
+
 // The route drawn on the ground in the route and navigation scenarios (RouteLine), pixels.
 constexpr double kRouteLineWidth = 6.0;
 const TransitionConfiguration::FeatureTypes kObjectTypes = {FeatureType::Building, FeatureType::Generic};
@@ -237,20 +247,23 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         // §4.1: detailed and map-like views blended by the vertical view angle, weighted with
         // the view distance so that a near bird's-eye view is not drawn in full detail;
         // landmarks (static interest >= 0.8) stay photorealistic.
-        auto s = makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
-                                    "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
-                                    "3:1 with view distance, 0.35-2 times the camera's distance to the scene "
-                                    "centre); landmarks keep their detail and, in "
-                                    "map-like views, grow, turn their best view to the viewer and "
-                                    "flatten (§3.2.2).");
+        auto s =
+            makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
+                               "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
+                               "3:1 with view distance, 0.35-2 times the camera's distance to the scene "
+                               "centre); landmarks keep their detail and, in "
+                               "map-like views, grow, turn their best view to the viewer and "
+                               "flatten, while the other buildings shrink and sink below the ground where "
+                               "they are drawn as a map (§3.2.2, Figure 1).");
         osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.35, 2.0, 1.0);
         distance->setScale(M::VIEW);
         addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), distance}, "photorealistic", "cartographic",
                      0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
         addLandmarksInDetail(*s);
         // §3.2.2: the defaults morph landmarks over the same view angles (25-60 degrees) as
-        // the transitions above; non-landmarks stay (sinking off).
-        s->setLandmarkDeformation(new LandmarkDeformation);
+        // the transitions above; non-landmark buildings shrink and sink where the scenario
+        // draws them as a map (Figure 1).
+        s->setLandmarkDeformation(mapDeformation().get());
         return s;
     }
     if (name == "route")
@@ -342,7 +355,8 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
                   "waterlined, green spaces with signatures, terrain as relief, buildings cartographic, in "
                   "the brewer-subtypes colours; the route is drawn on the ground as a 6 px blue line; "
                   "landmarks (static interest >= 0.8) stay photorealistic "
-                  "and turn their best view to the viewer (§3.2.2).");
+                  "and turn their best view to the viewer, the other buildings shrink and sink where they "
+                  "are drawn as a map (§3.2.2).");
         s->setColorScheme("brewer-subtypes");
         osg::ref_ptr<RegionOfInterest> route = new RegionOfInterest(RegionOfInterest::POLYLINE, {}, 0.01);
         route->setName("route");
@@ -360,7 +374,7 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         addDetailOverMap(*s, metrics, BlendFunction(0.4f, 0.6f, 1.0f, 1.0f),
                          BlendFunction(0.0f, 0.0f, 0.4f, 0.6f), osg::Vec2f(0.0f, 0.8f));
         addLandmarksInDetail(*s);
-        s->setLandmarkDeformation(new LandmarkDeformation);
+        s->setLandmarkDeformation(mapDeformation().get());
         return s;
     }
     throw ScenarioError("unknown built-in scenario '" + name + "'");

@@ -757,6 +757,15 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
     _aBuffer->setRestrictToRoutedRegion(deformation == nullptr);
     const FeatureIndex& index = _node.getFeatureIndex();
     const LandmarkDeformation::View view = LandmarkDeformation::View::fromViewToScene(_viewToSceneMatrix);
+    // Configurations whose style is map-like (the deformation's sinking may follow their weight).
+    unsigned mapConfigurations = 0;
+    if (deformation && deformation->getSinkFollowsMapStyles())
+    {
+        const UsageScenario::Configurations& configurations = evaluator.getScenario()->getConfigurations();
+        for (std::size_t j = 0; j < configurations.size() && j < 32; ++j)
+            if (configurations[j].valid() && deformation->isMapStyle(configurations[j]->getStyle()))
+                mapConfigurations |= 1u << j;
+    }
     for (std::size_t i = 0; i < features.size(); ++i)
     {
         Decision& d = _decisions[i];
@@ -818,8 +827,17 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
         TransitionUniforms::applyFeature(ss, evaluator, fs);
         const Feature& feature = *index.entries()[fs.entry].feature;
         if (deformation)
-            deformation->applyFeature(
-                ss, LandmarkDeformation::FeatureInput(feature, fs.bound, fs.staticInterest), view);
+        {
+            LandmarkDeformation::FeatureInput input(feature, fs.bound, fs.staticInterest);
+            if (deformation->getSinkFollowsMapStyles())
+            {
+                input.mapWeight = 0.0;
+                for (unsigned k = 0; k < fs.numMatches; ++k)
+                    if (m[k].configuration < 32 && (mapConfigurations & (1u << m[k].configuration)))
+                        input.mapWeight += m[k].weight;
+            }
+            deformation->applyFeature(ss, input, view);
+        }
     }
 }
 

@@ -72,11 +72,12 @@ inline osg::ref_ptr<osg::Node> featureQuad(unsigned id, osgLoA::FeatureType type
     return g;
 }
 
-/** The model drawn top-down (orthographic from above view's z range, north up) over view's x/y
- *  through a LoA node with this scenario; with an offset viewport the whole target is drawn once
- *  first (what stays outside it). */
-inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, osgLoA::UsageScenario* scenario, int width,
-                                        int height, const Viewport& vp, const osg::BoundingBoxd& view)
+/** The model drawn through a LoA node with this scenario by the camera `pose(renderer)` sets
+ *  (projection and view); with an offset viewport the whole target is drawn once first (what
+ *  stays outside it). */
+template <class Pose>
+osg::ref_ptr<osg::Image> throughLoA(osg::Node* model, osgLoA::UsageScenario* scenario, int width, int height,
+                                    const Viewport& vp, const Pose& pose)
 {
     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
     loa->setScenario(scenario);
@@ -87,23 +88,31 @@ inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, osgLoA::UsageScenario*
     s.clearColor = osg::Vec4(0.2f, 0.3f, 0.4f, 1.0f);
     osg::ref_ptr<osgLoA::OffscreenRenderer> r = new osgLoA::OffscreenRenderer(s);
     r->setSceneData(loa.get());
-    const double top = view.zMax() + 500.0;
-    auto pose = [&]
-    {
-        r->getCamera()->setProjectionMatrixAsOrtho(view.xMin(), view.xMax(), view.yMin(), view.yMax(), 1.0,
-                                                   top - view.zMin() + 10.0);
-        r->setViewMatrixAsLookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
-    };
     if (vp.w != width || vp.h != height || vp.x || vp.y)
     {
-        pose();
+        pose(*r);
         r->renderImage();
         r->getCamera()->setViewport(vp.x, vp.y, vp.w, vp.h);
     }
-    pose();
+    pose(*r);
     osg::ref_ptr<osg::Image> image = r->renderImage();
     EXPECT_EQ(loa->getBindError(), "");
     return image;
+}
+
+/** The model drawn top-down (orthographic from above view's z range, north up) over view's x/y
+ *  through a LoA node with this scenario. */
+inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, osgLoA::UsageScenario* scenario, int width,
+                                        int height, const Viewport& vp, const osg::BoundingBoxd& view)
+{
+    const double top = view.zMax() + 500.0;
+    return throughLoA(model, scenario, width, height, vp,
+                      [&](osgLoA::OffscreenRenderer& r)
+                      {
+                          r.getCamera()->setProjectionMatrixAsOrtho(view.xMin(), view.xMax(), view.yMin(),
+                                                                    view.yMax(), 1.0, top - view.zMin() + 10.0);
+                          r.setViewMatrixAsLookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
+                      });
 }
 
 /** The same, through a scenario that draws everything in `style`. */

@@ -259,4 +259,44 @@ public:
                                                              &MyClass::get##PROP, &MyClass::set##PROP),      \
         osgDB::BaseSerializer::RW_OBJECT)
 
+namespace osgLoA
+{
+/** A list of strings written as OSG writes wrapped strings (count, brackets, one a line), for
+ *  user serializers: reads at most `limit` entries (else fails naming `what`: "TransitionConfiguration:
+ *  implausible sub-type count 70000") and stops at the first failed entry. */
+inline bool readBoundedStrings(osgDB::InputStream& is, const std::string& what, unsigned limit,
+                               std::vector<std::string>& out)
+{
+    const unsigned size = is.readSize();
+    if (size > limit)
+    {
+        is.throwException(what + " count " + std::to_string(size));
+        return false;
+    }
+    out.clear();
+    is >> is.BEGIN_BRACKET;
+    for (unsigned i = 0; i < size && !is.getException(); ++i)
+    {
+        std::string s;
+        is.readWrappedString(s);
+        out.push_back(s);
+    }
+    is >> is.END_BRACKET;
+    return true;
+}
+
+inline bool writeStrings(osgDB::OutputStream& os, const std::vector<std::string>& list)
+{
+    os.writeSize(list.size());
+    os << os.BEGIN_BRACKET << std::endl;
+    for (const std::string& s : list)
+    {
+        os.writeWrappedString(s);
+        os << std::endl;
+    }
+    os << os.END_BRACKET << std::endl;
+    return true;
+}
+} // namespace osgLoA
+
 #endif

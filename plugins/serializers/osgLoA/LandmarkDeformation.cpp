@@ -4,6 +4,7 @@
 // UsageScenario::validate() fail (the deformation itself never produces NaN from them).
 #include <osgLoA/transitions/LandmarkDeformation>
 
+#include "BoundedListSerializer.h"
 #include "EnumByNameSerializer.h"
 
 #include <osgDB/InputStream>
@@ -56,6 +57,24 @@ bool writeSinkTypes(osgDB::OutputStream& os, const osgLoA::LandmarkDeformation& 
     os << os.END_BRACKET << std::endl;
     return true;
 }
+bool checkMapStyles(const osgLoA::LandmarkDeformation& d)
+{
+    return d.getMapStyles() != osgLoA::LandmarkDeformation::defaultMapStyles();
+}
+
+bool readMapStyles(osgDB::InputStream& is, osgLoA::LandmarkDeformation& d)
+{
+    osgLoA::LandmarkDeformation::StyleNames names;
+    if (!osgLoA::readBoundedStrings(is, "LandmarkDeformation: implausible map style", kMaxSinkTypes, names))
+        return false;
+    d.setMapStyles(names);
+    return true;
+}
+
+bool writeMapStyles(osgDB::OutputStream& os, const osgLoA::LandmarkDeformation& d)
+{
+    return osgLoA::writeStrings(os, d.getMapStyles());
+}
 } // namespace
 
 REGISTER_OBJECT_WRAPPER(osgLoA_LandmarkDeformation, new osgLoA::LandmarkDeformation,
@@ -89,4 +108,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_LandmarkDeformation, new osgLoA::LandmarkDeformat
     ADD_USER_SERIALIZER(SinkTypes);
     ADD_DOUBLE_SERIALIZER(ShrinkFactor, 0.5);
     ADD_DOUBLE_SERIALIZER(SinkFactor, 1.0);
+    // Issue 19 (non-landmarks sink where the scenario draws a map): after the older fields.
+    ADD_BOOL_SERIALIZER(SinkFollowsMapStyles, false);
+    ADD_USER_SERIALIZER(MapStyles);
 }

@@ -66,36 +66,17 @@ bool checkSubTypes(const osgLoA::TransitionConfiguration& c)
 
 bool readSubTypes(osgDB::InputStream& is, osgLoA::TransitionConfiguration& c)
 {
-    const unsigned size = is.readSize();
-    if (size > kMaxListSize)
-    {
-        is.throwException("TransitionConfiguration: implausible sub-type count " + std::to_string(size));
-        return false;
-    }
     osgLoA::TransitionConfiguration::SubTypes subTypes;
-    is >> is.BEGIN_BRACKET;
-    for (unsigned i = 0; i < size && !is.getException(); ++i)
-    {
-        std::string s;
-        is.readWrappedString(s);
-        subTypes.push_back(s);
-    }
-    is >> is.END_BRACKET;
+    if (!osgLoA::readBoundedStrings(is, "TransitionConfiguration: implausible sub-type", kMaxListSize,
+                                    subTypes))
+        return false;
     c.setSubTypes(subTypes);
     return true;
 }
 
 bool writeSubTypes(osgDB::OutputStream& os, const osgLoA::TransitionConfiguration& c)
 {
-    os.writeSize(c.getSubTypes().size());
-    os << os.BEGIN_BRACKET << std::endl;
-    for (const std::string& s : c.getSubTypes())
-    {
-        os.writeWrappedString(s);
-        os << std::endl;
-    }
-    os << os.END_BRACKET << std::endl;
-    return true;
+    return osgLoA::writeStrings(os, c.getSubTypes());
 }
 } // namespace
 
