@@ -10,7 +10,7 @@ uniform int loa_routeLineCount = 0;  // segments; 0: nothing drawn (no texel fet
 uniform int loa_routeLineRows = 0;   // rows of each group
 uniform mat4 loa_viewToScene;        // view -> scene (loa_style.vert.glsl)
 uniform mat4 loa_sceneToView;        // its inverse
-uniform int loa_featureType;         // osgLoA::FeatureType (1: building, never drawn on)
+uniform int loa_featureType;         // osgLoA::FeatureType: drawn on 2-5 (street, water, green, terrain)
 
 // Window pixels per unit of normalized device coordinates (half the viewport's size), from the
 // screen derivatives of the fragment's own NDC, taken by loa_routeLineDerivatives() at the start
@@ -35,13 +35,13 @@ vec4 loa_routeTexel(int index, int rowOffset)
     return texelFetch(loa_routeLines, ivec2(index % w, rowOffset + index / w), 0);
 }
 
-// The segment's end point a clipped against the near side (clip w >= a small epsilon) towards b.
-vec4 loa_routeClipNear(vec4 a, vec4 b)
+// The segment's end point a clipped towards b where its clip w is below wMin (a positive
+// fraction of the fragment's own w, so that the lerp keeps precision in float).
+vec4 loa_routeClipNear(vec4 a, vec4 b, float wMin)
 {
-    const float epsilon = 1.0e-6;
-    if (a.w >= epsilon)
+    if (a.w >= wMin)
         return a;
-    return mix(a, b, (epsilon - a.w) / (b.w - a.w));
+    return mix(a, b, (wMin - a.w) / (b.w - a.w));
 }
 
 // The line's colour over rgb at scene position p (normal in view space). Each segment is taken to
@@ -51,29 +51,38 @@ vec4 loa_routeClipNear(vec4 a, vec4 b)
 // (anti-aliased). A line at least 4 px wide has a casing, its colour at 55 %, 1 px on each side.
 vec3 loa_routeLine(vec3 rgb, vec3 p, vec3 viewNormal)
 {
-    if (loa_routeLineCount <= 0 || loa_featureType == 1)
+    // Ground features only (street, water, green, terrain): not buildings, nor generic or
+    // unfeatured geometry, whose up-facing faces may be roofs.
+    if (loa_routeLineCount <= 0 || loa_featureType < 2 || loa_featureType > 5)
         return rgb;
     vec3 sceneNormal = mat3(loa_viewToScene) * viewNormal;
     if (sceneNormal.z < 0.5 * length(sceneNormal))
         return rgb; // walls and overhangs: the line lies on the ground
+    if (any(isinf(loa_routePixelsPerNdc)) || any(isnan(loa_routePixelsPerNdc)))
+        return rgb; // no screen derivatives (lines, points)
     vec4 cp = loa_routeSceneToClip(p);
     vec2 here = cp.xy / cp.w * loa_routePixelsPerNdc;
-    float bestPixels = 1.0e30;
+    // Parts of a segment nearer than a twentieth of the fragment's depth are left out.
+    float wMin = 0.05 * cp.w;
+    // The segment whose line covers the fragment most: the largest half width minus distance.
+    float bestMargin = -1.0e30, bestPixels = 1.0e30;
     int bestIndex = -1;
     for (int k = 0; k < loa_routeLineCount; ++k)
     {
         vec4 s = loa_routeTexel(k, 0);
         vec4 ca = loa_routeSceneToClip(vec3(s.xy, p.z)), cb = loa_routeSceneToClip(vec3(s.zw, p.z));
-        if (ca.w < 1.0e-6 && cb.w < 1.0e-6)
-            continue; // behind the eye
-        vec4 na = loa_routeClipNear(ca, cb), nb = loa_routeClipNear(cb, ca);
+        if (ca.w < wMin && cb.w < wMin)
+            continue; // behind the eye or too near it
+        vec4 na = loa_routeClipNear(ca, cb, wMin), nb = loa_routeClipNear(cb, ca, wMin);
         vec2 a = na.xy / na.w * loa_routePixelsPerNdc - here, b = nb.xy / nb.w * loa_routePixelsPerNdc - here;
         vec2 ab = b - a;
         float len2 = dot(ab, ab);
         float t = len2 > 0.0 ? clamp(-dot(a, ab) / len2, 0.0, 1.0) : 0.0;
         float pixels = length(a + ab * t);
-        if (pixels < bestPixels)
+        float margin = 0.5 * loa_routeTexel(k, 2 * loa_routeLineRows).x - pixels;
+        if (margin > bestMargin)
         {
+            bestMargin = margin;
             bestPixels = pixels;
             bestIndex = k;
         }

@@ -630,7 +630,7 @@ void expectNoLeaks(const TestScene& scene, const std::vector<std::string>& camer
         for (const std::string& name : ScenarioLibrary::builtinNames())
         {
             // Buildings that sink where a scenario draws a map (view-angle, navigation: §3.2.2)
-            // uncover what was behind them, the sky included, by design (MapSinkingGLTest):
+            // uncover what was behind them, the sky included, by design (LandmarkDeformationGLTest):
             // here sinking is off, so that what shows the background is a compositing leak.
             osg::ref_ptr<UsageScenario> scenario = ScenarioLibrary::createBuiltin(name);
             if (LandmarkDeformation* d = scenario->getLandmarkDeformation()) d->setSinkingEnabled(false);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace osgLoA;
@@ -100,6 +101,26 @@ TEST(RouteLineTest, PixelDistanceIsMeasuredInTheWindow)
     EXPECT_EQ(n.index, 1);
     EXPECT_DOUBLE_EQ(n.pixels, 0.2);
     EXPECT_EQ(RouteLine::nearest({}, osg::Vec3d(), osg::Matrixd::identity(), unit).index, -1);
+
+    // Off-axis, from behind the eye: (-4, -5) to (4, 4) at height -1 crosses w = 0 at t = 5/9.
+    // Clipped where w = 0.05 x 2 (the point's own w is 2): t = 5.1/9, at x = -4 + 8 x 5.1/9
+    // = 0.5333, NDC (5.3333, -10); the far end (4, 4) at NDC (1, -0.25). The point (0, 2, -1)
+    // is at NDC (0, -0.5): its distance to that segment, times 100 px.
+    const RouteLine::Segments diagonal =
+        RouteLine::collect({drawn(R::POLYLINE, {{-4, -5}, {4, 4}}, 0.0, 6.0)});
+    n = RouteLine::nearest(diagonal, osg::Vec3d(0, 2, -1), persp, osg::Vec2d(100, 100));
+    ASSERT_EQ(n.index, 0);
+    const osg::Vec2d a(0.53333333333333333 / 0.1, -10.0), b(1.0, -0.25), q(0.0, -0.5);
+    const osg::Vec2d ab = b - a;
+    const double t = std::clamp(((q - a) * ab) / (ab * ab), 0.0, 1.0);
+    EXPECT_NEAR(n.pixels, 100.0 * (a + ab * t - q).length(), 1e-6);
+    // The segment chosen is the one that covers the point most (half width minus distance): a
+    // wide route 3 px away (margin 10 - 3) wins over a 1 px line through the point (margin 0.5).
+    const RouteLine::Segments both = RouteLine::collect({drawn(R::POLYLINE, {{-10, 0}, {10, 0}}, 0.0, 1.0),
+                                                         drawn(R::POLYLINE, {{-10, 3}, {10, 3}}, 0.0, 20.0)});
+    n = RouteLine::nearest(both, osg::Vec3d(0, 0, 0), osg::Matrixd::identity(), unit);
+    EXPECT_EQ(n.index, 1);
+    EXPECT_DOUBLE_EQ(n.pixels, 3.0);
 }
 
 TEST(RouteLineTest, ShadeHasAFillACasingAndAnAntiAliasedRim)
@@ -160,6 +181,20 @@ TEST(RouteLineTest, ApplySetsTheTextureLayoutAndClearsIt)
     ASSERT_EQ(t->getImage()->s(), RouteLine::kTextureWidth);
     ASSERT_EQ(t->getImage()->t(), 6);
     EXPECT_EQ(*reinterpret_cast<const float*>(t->getImage()->data(0, 1)), 40.0f);
+    // More than kMaxSegments: refused, nothing changed.
+    RouteLine::Segments many(std::size_t(RouteLine::kMaxSegments) + 1, segments[0]);
+    try
+    {
+        RouteLine::apply(*ss, many);
+        ADD_FAILURE() << "too many segments accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("8193 segments to draw, more than the 8192"), std::string::npos)
+            << e.what();
+    }
+    ss->getUniform("loa_routeLineCount")->get(count);
+    EXPECT_EQ(count, 4097);
     // None: count 0 and no texture.
     RouteLine::apply(*ss, {});
     ss->getUniform("loa_routeLineCount")->get(count);

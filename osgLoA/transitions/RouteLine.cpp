@@ -79,13 +79,14 @@ RouteLine::Segments RouteLine::collect(const std::vector<osg::ref_ptr<RegionOfIn
 
 void RouteLine::apply(osg::StateSet& ss, const Segments& segments)
 {
-    const int count =
-        int(std::min<std::size_t>(segments.size(), std::size_t(std::numeric_limits<int>::max())));
+    if (segments.size() > std::size_t(kMaxSegments))
+        throw std::invalid_argument(
+            "route line: " + std::to_string(segments.size()) + " segments to draw, more than the " +
+            std::to_string(kMaxSegments) +
+            " every ground fragment can loop over (simplify the regions drawn as lines, "
+            "or set their LineWidth to 0)");
+    const int count = int(segments.size());
     const int rows = (count + kTextureWidth - 1) / kTextureWidth;
-    if (segments.size() > std::size_t(kTextureWidth) * (16384 / 3))
-        throw std::invalid_argument("route line: " + std::to_string(segments.size()) +
-                                    " segments are more than a texture holds (" +
-                                    std::to_string(kTextureWidth * (16384 / 3)) + ")");
     uniform(ss, "loa_routeLineCount", osg::Uniform::INT)->set(count);
     uniform(ss, "loa_routeLineRows", osg::Uniform::INT)->set(rows);
     uniform(ss, "loa_routeLines", osg::Uniform::SAMPLER_2D)->set(int(kUnit));
@@ -130,26 +131,29 @@ void RouteLine::apply(osg::StateSet& ss, const Segments& segments)
 RouteLine::Nearest RouteLine::nearest(const Segments& segments, const osg::Vec3d& p,
                                       const osg::Matrixd& sceneToClip, const osg::Vec2d& pixelsPerNdc)
 {
-    const double epsilon = 1.0e-6;
     auto clip = [&](const osg::Vec2d& xy) { return osg::Vec4d(xy.x(), xy.y(), p.z(), 1.0) * sceneToClip; };
     auto window = [&](const osg::Vec4d& c)
     { return osg::Vec2d(c.x() / c.w() * pixelsPerNdc.x(), c.y() / c.w() * pixelsPerNdc.y()); };
+    const osg::Vec4d cp = osg::Vec4d(p, 1.0) * sceneToClip;
+    const osg::Vec2d here = window(cp);
+    const double wMin = kNearFraction * cp.w();
     auto clipNear = [&](const osg::Vec4d& a, const osg::Vec4d& b)
-    { return a.w() >= epsilon ? a : a + (b - a) * ((epsilon - a.w()) / (b.w() - a.w())); };
-    const osg::Vec2d here = window(osg::Vec4d(p, 1.0) * sceneToClip);
+    { return a.w() >= wMin ? a : a + (b - a) * ((wMin - a.w()) / (b.w() - a.w())); };
     Nearest best;
-    best.pixels = std::numeric_limits<double>::infinity();
+    double bestMargin = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < segments.size(); ++k)
     {
         const osg::Vec4d ca = clip(segments[k].a), cb = clip(segments[k].b);
-        if (ca.w() < epsilon && cb.w() < epsilon) continue;
+        if (ca.w() < wMin && cb.w() < wMin) continue;
         const osg::Vec2d a = window(clipNear(ca, cb)) - here, b = window(clipNear(cb, ca)) - here;
         const osg::Vec2d ab = b - a;
         const double len2 = ab * ab;
         const double t = len2 > 0.0 ? osg::clampBetween(-(a * ab) / len2, 0.0, 1.0) : 0.0;
         const double pixels = (a + ab * t).length();
-        if (pixels < best.pixels)
+        const double margin = 0.5 * segments[k].width - pixels;
+        if (margin > bestMargin)
         {
+            bestMargin = margin;
             best.index = int(k);
             best.pixels = pixels;
         }

@@ -263,10 +263,12 @@ namespace osgLoA
 {
 /** A list of strings written as OSG writes wrapped strings (count, brackets, one a line), for
  *  user serializers: reads at most `limit` entries (else fails naming `what`: "TransitionConfiguration:
- *  implausible sub-type count 70000") and stops at the first failed entry. */
+ *  implausible sub-type count 70000"), stops at the first failed entry and returns false then
+ *  (the caller sets nothing), and reads nothing after an earlier field's failure. */
 inline bool readBoundedStrings(osgDB::InputStream& is, const std::string& what, unsigned limit,
                                std::vector<std::string>& out)
 {
+    if (is.getException()) return false; // an earlier field failed: keep its error
     const unsigned size = is.readSize();
     if (size > limit)
     {
@@ -282,7 +284,7 @@ inline bool readBoundedStrings(osgDB::InputStream& is, const std::string& what, 
         out.push_back(s);
     }
     is >> is.END_BRACKET;
-    return true;
+    return !is.getException(); // a failed entry: no partial list is set
 }
 
 inline bool writeStrings(osgDB::OutputStream& os, const std::vector<std::string>& list)
