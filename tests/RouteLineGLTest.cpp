@@ -166,17 +166,14 @@ TEST(RouteLineGLTest, AsWideInPixelsNearAsFarInPerspective)
                 r->setLineWidth(width);
                 s->addRegion(r.get());
             }
-            osg::ref_ptr<LoANode> loa = new LoANode;
-            loa->setScenario(s.get());
-            loa->addChild(ground.get());
-            OffscreenRenderer::Settings rs;
-            rs.width = w;
-            rs.height = h;
-            osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(rs);
-            r->setSceneData(loa.get());
-            r->getCamera()->setProjectionMatrixAsPerspective(40.0, double(w) / h, 1.0, 5000.0);
-            r->setViewMatrixAsLookAt(osg::Vec3d(0, -10, 10), osg::Vec3d(0, 200, 0), osg::Vec3d(0, 0, 1));
-            return r->renderImage();
+            return loatest::throughLoA(
+                ground.get(), s.get(), w, h, loatest::Viewport{0, 0, w, h},
+                [&](OffscreenRenderer& r)
+                {
+                    r.getCamera()->setProjectionMatrixAsPerspective(40.0, double(w) / h, 1.0, 5000.0);
+                    r.setViewMatrixAsLookAt(osg::Vec3d(0, -10, 10), osg::Vec3d(0, 200, 0),
+                                            osg::Vec3d(0, 0, 1));
+                });
         };
         osg::ref_ptr<osg::Image> plain = frame(0.0), line = frame(6.0);
         loatest::keepFrame("route-line", *line, "perspective-" + std::to_string(w) + "x" + std::to_string(h));

@@ -13,6 +13,7 @@
 #include <osgDB/Serializer>
 
 #include <cmath>
+#include <string>
 
 namespace
 {
@@ -21,17 +22,31 @@ bool checkRadius(const osgLoA::RegionOfInterest& r)
     return r.getRadius() != 0.0;
 }
 
+/** Reads a double into v. After an earlier field failed, the bytes here are not this value:
+ *  nothing is read and that first error is kept. `problem(v)` is empty for a valid value, else
+ *  the message the read fails with. */
+template <class Problem> bool readChecked(osgDB::InputStream& is, double& v, const Problem& problem)
+{
+    if (is.getException()) return false;
+    is >> v;
+    const std::string message = problem(v);
+    if (message.empty()) return true;
+    is.throwException(message);
+    return false;
+}
+
 bool readRadius(osgDB::InputStream& is, osgLoA::RegionOfInterest& r)
 {
-    // After an earlier field failed, the bytes here are not a radius: keep that first error.
-    if (is.getException()) return false;
     double v = 0.0;
-    is >> v;
-    if (!std::isfinite(v) || v < 0.0)
-    {
-        is.throwException("RegionOfInterest: radius " + std::to_string(v) + " must be finite and >= 0");
+    if (!readChecked(is, v,
+                     [](double x)
+                     {
+                         return std::isfinite(x) && x >= 0.0
+                                    ? std::string()
+                                    : "RegionOfInterest: radius " + std::to_string(x) +
+                                          " must be finite and >= 0";
+                     }))
         return false;
-    }
     r.setRadius(v);
     return true;
 }
@@ -49,16 +64,18 @@ bool checkLineWidth(const osgLoA::RegionOfInterest& r)
 
 bool readLineWidth(osgDB::InputStream& is, osgLoA::RegionOfInterest& r)
 {
-    if (is.getException()) return false; // keep the first error (readRadius)
+    const double most = osgLoA::RegionOfInterest::kMaxLineWidth;
     double v = 0.0;
-    is >> v;
-    if (!std::isfinite(v) || v < 0.0 || v > osgLoA::RegionOfInterest::kMaxLineWidth)
-    {
-        is.throwException("RegionOfInterest: line width " + std::to_string(v) +
-                          " must be finite and in [0, " +
-                          std::to_string(int(osgLoA::RegionOfInterest::kMaxLineWidth)) + "] pixels");
+    if (!readChecked(is, v,
+                     [most](double x)
+                     {
+                         return std::isfinite(x) && x >= 0.0 && x <= most
+                                    ? std::string()
+                                    : "RegionOfInterest: line width " + std::to_string(x) +
+                                          " must be finite and in [0, " + std::to_string(int(most)) +
+                                          "] pixels";
+                     }))
         return false;
-    }
     r.setLineWidth(v);
     return true;
 }
