@@ -3,6 +3,17 @@
 // model -> LoA-node ("scene") coordinates, landmark deformation (loa_landmark.vert.glsl), and
 // back to view and clip space. The fixed-function matrices are used so that the same program runs
 // in the stock osgviewer and in osgLoA's offscreen renderer.
+#ifdef LOA_GEOMETRY_STAGE
+// A style's geometry stage follows (loa_tree_sprites.geom.glsl): it reads these outputs under the
+// names below and writes the fragment stage's inputs under their own.
+#define loa_scenePosition loa_vsScenePosition
+#define loa_viewPosition loa_vsViewPosition
+#define loa_viewNormal loa_vsViewNormal
+#define loa_texCoord loa_vsTexCoord
+#define loa_texCoord1 loa_vsTexCoord1
+#define loa_texCoord2 loa_vsTexCoord2
+#define loa_color loa_vsColor
+#endif
 uniform mat4 loa_viewToScene; // view -> LoA node local coordinates
 uniform mat4 loa_sceneToView; // its inverse
 

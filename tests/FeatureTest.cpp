@@ -126,6 +126,9 @@ TEST(FeatureTest, EveryFieldSurvivesOsgtAndOsgbRoundTrips)
     f->setLod(2.2f);
     f->setSourceId("NL.IMBAG.Pand.0503100000000010");
     f->setSourceType("PlantCover");
+    f->setCentreline({osg::Vec2d(1.5, -2.0), osg::Vec2d(30.25, 4.0)});
+    f->setLabel("Stra\xc3\x9f"
+                "e des 17. Juni");
     Feature::attach(*g, f.get());
     const std::string first = loatest::toOsgt(*g);
     EXPECT_NE(first.find("osgLoA::Feature"), std::string::npos) << first;
@@ -150,6 +153,9 @@ TEST(FeatureTest, EveryFieldSurvivesOsgtAndOsgbRoundTrips)
         EXPECT_FLOAT_EQ(r->getLod(), 2.2f);
         EXPECT_EQ(r->getSourceId(), "NL.IMBAG.Pand.0503100000000010");
         EXPECT_EQ(r->getSourceType(), "PlantCover");
+        EXPECT_EQ(r->getCentreline(), (Feature::Centreline{osg::Vec2d(1.5, -2.0), osg::Vec2d(30.25, 4.0)}));
+        EXPECT_EQ(r->getLabel(), "Stra\xc3\x9f"
+                                 "e des 17. Juni");
     }
 }
 

@@ -7,16 +7,20 @@
 #include "support/TestSupport.h"
 #include "support/TopDownView.h"
 
+#include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/Feature>
+#include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/GreenSpaceSignatures>
+#include <osgLoA/styles/TreeSilhouettes>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 
 #include <osg/Geode>
+#include <osg/ShapeDrawable>
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 
@@ -290,4 +294,238 @@ TEST(GreenSpaceSignaturesGLTest, DiffersFromCartographicOnGreenSpacesOnlyInAReal
     EXPECT_EQ(d.outside, 0);
     ASSERT_GT(d.inside, 0);
     EXPECT_GT(double(d.changed), 0.05 * d.inside);
+}
+
+// --- tree silhouettes (osgLoA::TreeSilhouettes, paper 004 Figure 8C) -------------------------------
+
+namespace
+{
+/** "trees" with leaves of radius 1 and density 0.005 (4-5 leaves on a 40 x 40 triangle), no
+ *  minimum size on screen: the leaves of the twin test. */
+std::string twinTrees()
+{
+    const std::string name = "test-trees-twin";
+    if (!GraphicStyleCatalog::instance().prototype(name))
+    {
+        osg::ref_ptr<GraphicStyle> t = GraphicStyleCatalog::instance().create("trees");
+        t->setName(name);
+        t->getParameter("loa_trees_leafRadius")->set(1.0f);
+        t->getParameter("loa_trees_density")->set(0.005f);
+        t->getParameter("loa_trees_minPixels")->set(0.0f);
+        GraphicStyleCatalog::instance().add(*t);
+    }
+    return name;
+}
+
+/** A crown under a green feature: the drawable named TreeCrown. */
+osg::ref_ptr<osg::Node> crownFeature(osg::Drawable* crown, unsigned id)
+{
+    crown->setName("TreeCrown");
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(crown);
+    osg::ref_ptr<osg::Group> g = new osg::Group;
+    g->addChild(geode.get());
+    Feature::attach(*g, new Feature(id, FeatureType::Green, "deciduous"));
+    return g;
+}
+
+void expectLeavesOfTheTwin(int w, int h, const Viewport& vp)
+{
+    // One crown triangle, seen from above: each leaf a disc of radius 1 at the twin's point.
+    const osg::Vec3d a(0, 0, 0), b(40, 0, 0), c(0, 40, 0);
+    osg::ref_ptr<osg::Geometry> tri = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    for (const osg::Vec3d& p : {a, b, c})
+        v->push_back(osg::Vec3(p));
+    tri->setVertexArray(v.get());
+    osg::ref_ptr<osg::Vec3Array> n = new osg::Vec3Array;
+    n->push_back(osg::Vec3(0, 0, 1));
+    tri->setNormalArray(n.get(), osg::Array::BIND_OVERALL);
+    tri->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 3));
+    osg::ref_ptr<osg::Node> scene = crownFeature(tri.get(), 1);
+    const double aspect = double(vp.w) / vp.h;
+    const osg::BoundingBoxd view(-5, -5, -1, -5 + 50 * aspect, 45, 1);
+    osg::ref_ptr<osg::Image> img = loatest::topDown(scene.get(), twinTrees(), w, h, vp, view);
+    const std::string name = std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(vp.x);
+    keep(*img, "trees-twin-" + name);
+    const std::uint32_t hash = TreeSilhouettes::triangleHash(a, b, c);
+    const int count = TreeSilhouettes::spriteCount(800.0, 0.005, hash);
+    const double scale = vp.h / 50.0; // pixels per unit
+    std::vector<osg::Vec2d> twin;
+    for (int k = 0; k < count; ++k)
+    {
+        const osg::Vec3d bc = TreeSilhouettes::spriteBarycentric(hash, k);
+        const osg::Vec3d p = a * bc.x() + b * bc.y() + c * bc.z();
+        twin.emplace_back((p.x() + 5.0) * scale, (p.y() + 5.0) * scale);
+    }
+    // Leaf pixels: those not of the clear colour (0.2, 0.3, 0.4), per nearest twin leaf.
+    std::vector<osg::Vec2d> sum(twin.size());
+    std::vector<long> pixels(twin.size(), 0);
+    long stray = 0;
+    for (int y = vp.y; y < vp.y + vp.h; ++y)
+        for (int x = vp.x; x < vp.x + vp.w; ++x)
+        {
+            const unsigned char* p = img->data(x, y);
+            if (std::abs(p[0] - 51) + std::abs(p[1] - 77) + std::abs(p[2] - 102) < 12) continue;
+            const osg::Vec2d q(x - vp.x + 0.5, y - vp.y + 0.5);
+            std::size_t best = 0;
+            for (std::size_t k = 1; k < twin.size(); ++k)
+                if ((twin[k] - q).length() < (twin[best] - q).length()) best = k;
+            if (twin.empty() || (twin[best] - q).length() > scale + 1.5)
+            {
+                ++stray;
+                continue;
+            }
+            sum[best] += q;
+            ++pixels[best];
+        }
+    std::cout << "trees twin " << name << ": " << count << " leaves, " << stray << " stray pixels\n";
+    EXPECT_GE(count, 4);
+    EXPECT_EQ(stray, 0) << name;
+    const double disc = 3.14159265 * scale * scale;
+    for (std::size_t k = 0; k < twin.size(); ++k)
+    {
+        ASSERT_GT(pixels[k], 0) << name << " leaf " << k;
+        const osg::Vec2d centroid = sum[k] / double(pixels[k]);
+        EXPECT_LT((centroid - twin[k]).length(), 0.75) << name << " leaf " << k;
+        EXPECT_NEAR(double(pixels[k]), disc, 0.1 * disc + 4.0 * scale) << name << " leaf " << k;
+    }
+}
+
+/** Dark pixels inside a crown (7 x 7 neighbourhood all crown) and the share of dark pixels on its
+ *  outline, seen level from `distance` with the crown (radius 4) filling 60 % of the height. */
+struct CrownOutlines
+{
+    long interior = 0, interiorDark = 0, outline = 0, outlineDark = 0;
+};
+CrownOutlines crownOutlines(double distance, int w, int h)
+{
+    osg::ref_ptr<osg::TessellationHints> hints = new osg::TessellationHints;
+    hints->setDetailRatio(2.0f);
+    osg::ref_ptr<osg::ShapeDrawable> sphere =
+        new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0, 0, 10), 4.0f), hints.get());
+    osg::ref_ptr<osg::Node> scene = crownFeature(sphere.get(), 1);
+    const double fovy = 2.0 * std::atan(4.0 / (0.6 * distance)) * 180.0 / 3.14159265358979;
+    const Viewport vp{0, 0, w, h};
+    osg::ref_ptr<osg::Image> img = loatest::throughLoA(
+        scene.get(), ScenarioLibrary::createHomogeneous("trees").get(), w, h, vp,
+        [&](OffscreenRenderer& r)
+        {
+            r.setPerspective(fovy);
+            r.setViewMatrixAsLookAt(osg::Vec3d(0, -distance, 10), osg::Vec3d(0, 0, 10), osg::Vec3d(0, 0, 1));
+        });
+    keep(*img, "trees-crown-" + std::to_string(int(distance)) + "m");
+    auto crown = [&](int x, int y)
+    {
+        const unsigned char* p = img->data(x, y);
+        return std::abs(p[0] - 51) + std::abs(p[1] - 77) + std::abs(p[2] - 102) >= 12;
+    };
+    CrownOutlines o;
+    for (int y = 4; y < h - 4; ++y)
+        for (int x = 4; x < w - 4; ++x)
+        {
+            if (!crown(x, y)) continue;
+            bool inside = true, border = false;
+            for (int j = -3; j <= 3; ++j)
+                for (int i = -3; i <= 3; ++i)
+                {
+                    const bool c = crown(x + i, y + j);
+                    inside = inside && c;
+                    if (std::abs(i) <= 1 && std::abs(j) <= 1 && !c) border = true;
+                }
+            const unsigned char* p = img->data(x, y);
+            const bool dark = p[0] + p[1] + p[2] < 3 * 60;
+            if (inside)
+            {
+                ++o.interior;
+                o.interiorDark += dark;
+            }
+            if (border)
+            {
+                ++o.outline;
+                o.outlineDark += dark;
+            }
+        }
+    return o;
+}
+} // namespace
+
+TEST(TreeSilhouettesGLTest, LeavesWhereTheTwinPutsThemAt1920x1080AnOddSizeAndAnOffsetViewport)
+{
+    expectLeavesOfTheTwin(1920, 1080, Viewport{0, 0, 1920, 1080});
+    expectLeavesOfTheTwin(641, 359, Viewport{0, 0, 641, 359});
+    expectLeavesOfTheTwin(577, 343, Viewport{37, 21, 500, 300});
+}
+
+TEST(TreeSilhouettesGLTest, InnerOutlinesFadeWithDistanceTheSilhouetteStays)
+{
+    // Deussen & Strothotte's view-dependent abstraction: the same crown at the same size on screen,
+    // 12 m and 400 m away. Near, leaves in front of others by a few percent of the distance are
+    // outlined inside the crown; far, the relative depth steps are 33 times smaller and only the
+    // silhouette is drawn.
+    const CrownOutlines near = crownOutlines(12.0, 641, 359), far = crownOutlines(400.0, 641, 359);
+    std::cout << "trees crown: near " << near.interiorDark << " of " << near.interior
+              << " interior pixels dark, " << near.outlineDark << " of " << near.outline << " outline; far "
+              << far.interiorDark << " of " << far.interior << ", " << far.outlineDark << " of "
+              << far.outline << "\n";
+    ASSERT_GT(near.interior, 10000);
+    ASSERT_GT(far.interior, 10000);
+    EXPECT_GT(near.interiorDark, 5 * far.interiorDark + 100);
+    EXPECT_LT(double(far.interiorDark), 0.01 * double(far.interior));
+    EXPECT_GT(double(near.outlineDark), 0.5 * double(near.outline));
+    EXPECT_GT(double(far.outlineDark), 0.5 * double(far.outline));
+}
+
+TEST(TreeSilhouettesGLTest, TreeCardsOfARealBlockBecomeLeavesWhereTheyShowFoliage)
+{
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/opencity-block.osgt";
+    if (!osgDB::fileExists(std::string(LOA_SOURCE_DIR) + "/data/cache/opencity-data/pine2/pine2.ac"))
+        GTEST_SKIP() << "the OpenCity models are absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> block = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(block.valid());
+    FeatureClassifier().classify(*block); // as loa-render and the loa plugin do
+    const int w = 1920, h = 1080;
+    auto render = [&](const std::string& style)
+    {
+        osg::ref_ptr<LoANode> loa = new LoANode;
+        loa->setScenario(ScenarioLibrary::createHomogeneous(style).get());
+        loa->addChild(block.get());
+        OffscreenRenderer::Settings st;
+        st.width = w;
+        st.height = h;
+        osg::ref_ptr<OffscreenRenderer> r = new OffscreenRenderer(st);
+        r->setSceneData(loa.get());
+        const CameraPose pose = CityCameras::compute("oblique", *block, double(w) / h);
+        r->setPerspective(pose.fovy);
+        r->setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+        osg::ref_ptr<osg::Image> img = r->renderImage();
+        EXPECT_EQ(loa->getBindError(), "");
+        return img;
+    };
+    osg::ref_ptr<osg::Image> trees = render("trees"), flat = render("cartographic"),
+                             mask = render(loatest::typeMaskStyle(FeatureType::Green));
+    keep(*trees, "trees-opencity-block-1920x1080");
+    // Pixels that change lie on or near green features (leaves reach a little beyond the cards'
+    // foliage), and the leaves cover a part of every tree.
+    long changed = 0, nearGreen = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+        {
+            const unsigned char *p = trees->data(x, y), *q = flat->data(x, y);
+            if (std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}) <= 8)
+                continue;
+            ++changed;
+            bool green = false;
+            for (int j = std::max(0, y - 12); j <= std::min(h - 1, y + 12) && !green; ++j)
+                for (int i = std::max(0, x - 12); i <= std::min(w - 1, x + 12) && !green; ++i)
+                {
+                    const unsigned char* m = mask->data(i, j);
+                    green = m[0] > m[1] + 30 && m[2] > m[1] + 30;
+                }
+            nearGreen += green;
+        }
+    std::cout << "trees on the OpenCity block: " << changed << " pixels changed, " << nearGreen
+              << " of them within 12 px of green features\n";
+    EXPECT_GT(changed, 2000);
+    EXPECT_GT(double(nearGreen), 0.98 * double(changed));
 }

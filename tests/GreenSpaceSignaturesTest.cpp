@@ -3,14 +3,22 @@
 // values computed by hand or by an independent implementation of the hash, the claim that no
 // symbol is cut at a cell border (the reach-limited lookup against a brute-force one over a
 // wide neighbourhood), the sub-type codes, and the ground map of a green feature with a tree.
+#include "support/TestSupport.h"
 #include "support/TopDownView.h"
 
+#include <osgLoA/city/CityGenerator>
+#include <osgLoA/semantics/Feature>
+#include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/semantics/FeatureSubType>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/GreenSpaceSignatures>
+#include <osgLoA/styles/TreeSilhouettes>
 
 #include <osg/Geode>
 #include <osg/Group>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+#include <osgDB/WriteFile>
 
 #include <gtest/gtest.h>
 
@@ -259,4 +267,141 @@ TEST(GreenSpaceSignaturesTest, GroundMapIsTheLowestGreenSurface)
     EXPECT_FALSE(GSS::computeGroundMap(*bare).valid());
     EXPECT_THROW(GSS::computeGroundMap(*root, 2), std::invalid_argument);
     EXPECT_THROW(GSS::computeGroundMap(*root, 64, -1.0), std::invalid_argument);
+}
+
+// --- tree silhouettes (osgLoA::TreeSilhouettes, paper 004 Figure 8C) -------------------------------
+
+TEST(TreeSilhouettesTest, SpriteCountIsTheAreaTimesTheDensityOnAverageAndCapped)
+{
+    // floor(x + U) with U uniform in [0, 1): x on average, floor(x) or floor(x) + 1 each time.
+    for (double x : {0.3, 2.3, 5.75})
+    {
+        double sum = 0.0;
+        const int n = 20000;
+        for (int i = 0; i < n; ++i)
+        {
+            const int c = TreeSilhouettes::spriteCount(x, 1.0, TreeSilhouettes::pcg(std::uint32_t(i)));
+            EXPECT_TRUE(c == int(std::floor(x)) || c == int(std::floor(x)) + 1) << x << " " << c;
+            sum += c;
+        }
+        EXPECT_NEAR(sum / n, x, 0.02) << x;
+    }
+    EXPECT_EQ(TreeSilhouettes::spriteCount(40.0, 1.0, 12345u), TreeSilhouettes::kMaxSprites);
+    EXPECT_EQ(TreeSilhouettes::spriteCount(0.0, 1.0, 0xffffffffu), 0);
+}
+
+TEST(TreeSilhouettesTest, LeavesLieInTheTriangleSpreadOutAndFixedInTheWorld)
+{
+    const osg::Vec3d a(0, 0, 0), b(40, 0, 0), c(0, 40, 0);
+    const std::uint32_t h = TreeSilhouettes::triangleHash(a, b, c);
+    // Order-independent, changed by a centimetre.
+    EXPECT_EQ(h, TreeSilhouettes::triangleHash(b, c, a));
+    EXPECT_EQ(h, TreeSilhouettes::triangleHash(c, b, a));
+    EXPECT_NE(h, TreeSilhouettes::triangleHash(a, b, c + osg::Vec3d(0.01, 0, 0)));
+    std::vector<osg::Vec3d> bs;
+    for (int k = 0; k < TreeSilhouettes::kMaxSprites; ++k)
+    {
+        const osg::Vec3d w = TreeSilhouettes::spriteBarycentric(h, k);
+        EXPECT_GE(w.x(), -1e-12);
+        EXPECT_GE(w.y(), 0.0);
+        EXPECT_GE(w.z(), 0.0);
+        EXPECT_NEAR(w.x() + w.y() + w.z(), 1.0, 1e-12);
+        bs.push_back(w);
+    }
+    // The R2 sequence keeps 8 points of a triangle apart (no two closer than 0.08 in (u, v)).
+    double closest = 1e9;
+    for (std::size_t i = 0; i < bs.size(); ++i)
+        for (std::size_t j = i + 1; j < bs.size(); ++j)
+            closest = std::min(closest, osg::Vec2d(bs[i].y() - bs[j].y(), bs[i].z() - bs[j].z()).length());
+    EXPECT_GT(closest, 0.08);
+}
+
+namespace
+{
+/** Drawables named TreeCrown, counted independently of the marker. */
+struct CrownCounter : public osg::NodeVisitor
+{
+    CrownCounter() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+    unsigned named = 0, marked = 0, drawables = 0;
+    void apply(osg::Drawable& d) override
+    {
+        ++drawables;
+        named += d.getName() == "TreeCrown";
+        marked += TreeSilhouettes::isCrown(d);
+    }
+};
+} // namespace
+
+TEST(TreeSilhouettesTest, CrownsOfTheDemoCityAndOfARealBlockByHand)
+{
+    // The demo city: every tree crown drawable (one per green space with trees) and nothing else.
+    osg::ref_ptr<osg::Node> city = CityGenerator(CityParameters::small()).generate();
+    CrownCounter before;
+    city->accept(before);
+    ASSERT_GT(before.named, 0u);
+    EXPECT_EQ(TreeSilhouettes::markCrowns(*city), before.named);
+    CrownCounter after;
+    city->accept(after);
+    EXPECT_EQ(after.marked, before.named);
+
+    // OpenCity block (real models): 7 tree geometries by hand (docs/test-scenes.md: 5 tree
+    // pieces of one card object each, light-of-star's "small tree" and "tree"); the park's ground
+    // shares a translucent atlas but lies flat.
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/opencity-block.osgt";
+    if (!osgDB::fileExists(std::string(LOA_SOURCE_DIR) + "/data/cache/opencity-data/pine2/pine2.ac"))
+        GTEST_SKIP() << "the OpenCity models are absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> block = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(block.valid());
+    FeatureClassifier().classify(*block); // as loa-render and the loa plugin do
+    EXPECT_EQ(TreeSilhouettes::markCrowns(*block), 7u);
+}
+
+TEST(TreeSilhouettesTest, QuadsBecomeTrianglesOfTheSameSurface)
+{
+    osg::ref_ptr<osg::Geometry> g = loatest::planeQuad(0, 0, 2, 1);
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(g.get());
+    unsigned lines = 7;
+    EXPECT_EQ(TreeSilhouettes::triangulate(*geode, &lines), 1u);
+    EXPECT_EQ(lines, 0u);
+    ASSERT_EQ(g->getNumPrimitiveSets(), 1u);
+    const osg::PrimitiveSet* ps = g->getPrimitiveSet(0);
+    EXPECT_EQ(ps->getMode(), GLenum(GL_TRIANGLES));
+    ASSERT_EQ(ps->getNumIndices(), 6u);
+    // Two triangles covering the quad: areas sum to 2.
+    const osg::Vec3Array& v = *static_cast<const osg::Vec3Array*>(g->getVertexArray());
+    double area = 0.0;
+    for (unsigned t = 0; t < 2; ++t)
+    {
+        const osg::Vec3 p0 = v[ps->index(3 * t)], p1 = v[ps->index(3 * t + 1)], p2 = v[ps->index(3 * t + 2)];
+        area += 0.5 * ((p1 - p0) ^ (p2 - p0)).length();
+    }
+    EXPECT_NEAR(area, 2.0, 1e-6);
+    g->addPrimitiveSet(new osg::DrawArrays(GL_LINES, 0, 2));
+    EXPECT_EQ(TreeSilhouettes::triangulate(*geode, &lines), 0u);
+    EXPECT_EQ(lines, 1u);
+}
+
+TEST(TreeSilhouettesTest, StyleRoundTripsWithItsGeometryStage)
+{
+    osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create("trees");
+    ASSERT_TRUE(s.valid());
+    EXPECT_EQ(s->getGeometryShader(), "loa_tree_sprites.geom.glsl");
+    s->getParameter("loa_trees_density")->set(3.5f);
+    const std::string dir = loatest::freshDirectory("TreeSilhouettesTest");
+    for (const char* ext : {"osgt", "osgb"})
+    {
+        const std::string path = dir + "/trees." + ext;
+        ASSERT_TRUE(osgDB::writeObjectFile(*s, path));
+        osg::ref_ptr<GraphicStyle> back = dynamic_cast<GraphicStyle*>(osgDB::readRefObjectFile(path).get());
+        ASSERT_TRUE(back.valid()) << ext;
+        EXPECT_EQ(back->getGeometryShader(), "loa_tree_sprites.geom.glsl") << ext;
+        EXPECT_EQ(back->getFragmentShader(), "loa_style_trees.frag.glsl") << ext;
+        float d = 0.0f;
+        ASSERT_NE(back->getParameter("loa_trees_density"), nullptr);
+        back->getParameter("loa_trees_density")->get(d);
+        EXPECT_EQ(d, 3.5f) << ext;
+    }
+    EXPECT_THROW(s->setGeometryShader("loa_style_trees.frag.glsl"), std::invalid_argument);
+    EXPECT_THROW(s->setGeometryShader("../x.geom.glsl"), std::invalid_argument);
 }

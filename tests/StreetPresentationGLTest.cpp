@@ -6,7 +6,9 @@
 #include "support/TestSupport.h"
 #include "support/TopDownView.h"
 
+#include <osgLoA/semantics/FeatureIndex>
 #include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/StreetLabels>
 #include <osgLoA/styles/StreetPresentation>
 
 #include <osgDB/FileUtils>
@@ -16,6 +18,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <set>
 
 using namespace osgLoA;
 
@@ -45,6 +48,20 @@ void registerWide()
     wide->getParameter("loa_streets_casingPixels")->setElement(0, 4.0f);
     wide->getParameter("loa_streets_casingPixels")->setElement(1, 3.0f);
     GraphicStyleCatalog::instance().add(*wide);
+}
+
+/** The streets style without its label layer (labels size 0). */
+std::string unlabelled()
+{
+    const std::string name = "test-streets-unlabelled";
+    if (!GraphicStyleCatalog::instance().prototype(name))
+    {
+        osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create("streets");
+        s->setName(name);
+        s->getParameter("loa_labels_size")->set(0.0f);
+        GraphicStyleCatalog::instance().add(*s);
+    }
+    return name;
 }
 
 void expectFillsAndCasings(int w, int h, const loatest::Viewport& vp)
@@ -140,11 +157,228 @@ TEST(StreetPresentationGLTest, DiffersFromCartographicOnStreetsOnlyInARealOsmFil
     if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
     osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
     ASSERT_TRUE(model.valid());
-    const loatest::MaskedDifference d = loatest::differenceInMask(model.get(), "streets", "cartographic",
+    // Fills and casings (the label layer is StreetLabelsGLTest's).
+    const loatest::MaskedDifference d = loatest::differenceInMask(model.get(), unlabelled(), "cartographic",
                                                                   loatest::typeMaskStyle(FeatureType::Street),
                                                                   1920, 1080, "streets", "west-oakland");
     EXPECT_EQ(d.outside, 0);
     ASSERT_GT(d.inside, 0);
     // Major roads change fill; every street gets casings.
     EXPECT_GT(double(d.changed), 0.1 * d.inside);
+}
+
+// --- street labels (osgLoA::StreetLabels) ---------------------------------------------------------
+
+namespace
+{
+/** A street quad carrying a name and its centre line along the quad's long axis. */
+osg::ref_ptr<osg::Node> namedRoad(unsigned id, const std::string& name, double x0, double y0, double x1,
+                                  double y1)
+{
+    osg::ref_ptr<osg::Node> n = road(id, "major", x0, y0, x1, y1);
+    Feature* f = Feature::get(*n);
+    f->setLabel(name);
+    if (x1 - x0 >= y1 - y0)
+        f->setCentreline({osg::Vec2d(x0, 0.5 * (y0 + y1)), osg::Vec2d(x1, 0.5 * (y0 + y1))});
+    else
+        f->setCentreline({osg::Vec2d(0.5 * (x0 + x1), y0), osg::Vec2d(0.5 * (x0 + x1), y1)});
+    return n;
+}
+
+/** The labels the renderer lays out for a top-down view of `model` over `view` in a w x h
+ *  viewport (the layout is deterministic: the test repeats it on the CPU). */
+std::vector<StreetLabels::Label> topDownLabels(osg::Node* model, const osg::BoundingBoxd& view, int w, int h,
+                                               std::vector<StreetLabels::Street>& streets,
+                                               SignedDistanceFont*& font, osg::ref_ptr<StreetLabels>& holder)
+{
+    FeatureIndex index(*model);
+    streets = StreetLabels::collect(index);
+    holder = new StreetLabels(streets);
+    font = &holder->getFont();
+    StreetLabels::Parameters p;
+    StreetLabels::parametersOf(*GraphicStyleCatalog::instance().create("streets"), p);
+    StreetLabels::View v;
+    v.width = w;
+    v.height = h;
+    const double top = view.zMax() + 500.0;
+    v.sceneToClip = osg::Matrixd::lookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0)) *
+                    osg::Matrixd::ortho(view.xMin(), view.xMax(), view.yMin(), view.yMax(), 1.0,
+                                        top - view.zMin() + 10.0);
+    return StreetLabels::layout(streets, v, *font, p);
+}
+
+/** Whether window pixel (x, y) (viewport-relative) lies in a glyph quad of the labels, grown by
+ *  `grow` pixels. */
+bool inQuads(const std::vector<StreetLabels::Label>& labels, const SignedDistanceFont& font, double x,
+             double y, double grow)
+{
+    for (const auto& l : labels)
+        for (const auto& g : l.glyphs)
+        {
+            osg::Vec2d q[4];
+            StreetLabels::glyphQuad(g, l.size, font, q);
+            bool inside = true;
+            for (int i = 0; i < 4 && inside; ++i)
+            {
+                const osg::Vec2d e = q[(i + 1) % 4] - q[i];
+                const osg::Vec2d n = osg::Vec2d(-e.y(), e.x()) / e.length();
+                inside = (osg::Vec2d(x, y) - q[i]) * n >= -grow;
+            }
+            if (inside) return true;
+        }
+    return false;
+}
+
+void expectLabelsWhereLaidOut(int w, int h, const loatest::Viewport& vp)
+{
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->addChild(namedRoad(1, "Adeline Street", 0, 40, 200, 54).get());
+    scene->addChild(namedRoad(2, "Market Street", 120, 0, 134, 100).get());
+    const double aspect = double(vp.w) / vp.h;
+    const osg::BoundingBoxd view(100 - 50 * aspect, 0, 0, 100 + 50 * aspect, 100, 0);
+    osg::ref_ptr<osg::Image> labelled = loatest::topDown(scene.get(), "streets", w, h, vp, view);
+    osg::ref_ptr<osg::Image> plain = loatest::topDown(scene.get(), unlabelled(), w, h, vp, view);
+    const std::string name = std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(vp.x);
+    loatest::keepFrame("street-labels", *labelled, "quads-" + name);
+    std::vector<StreetLabels::Street> streets;
+    SignedDistanceFont* font = nullptr;
+    osg::ref_ptr<StreetLabels> holder;
+    const auto labels = topDownLabels(scene.get(), view, vp.w, vp.h, streets, font, holder);
+    // Both streets labelled (at 1920x1080 the 200 m street repeats its name every 300 px or more).
+    ASSERT_GE(labels.size(), 2u) << name;
+    std::set<std::size_t> labelledStreets;
+    for (const auto& l : labels)
+        labelledStreets.insert(l.street);
+    EXPECT_EQ(labelledStreets.size(), 2u) << name;
+    // Every changed pixel lies in a glyph quad (grown by a pixel for the rasterization); each
+    // label has text-coloured pixels (0.2 grey, within 40/255) and halo-white ones.
+    long changedOutside = 0, changedInside = 0;
+    std::vector<long> text(labels.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+        {
+            const unsigned char *p = labelled->data(x, y), *q = plain->data(x, y);
+            const bool changed = std::max({std::abs(int(p[0]) - int(q[0])), std::abs(int(p[1]) - int(q[1])),
+                                           std::abs(int(p[2]) - int(q[2]))}) > 2;
+            if (!changed) continue;
+            const double wx = x - vp.x + 0.5, wy = y - vp.y + 0.5;
+            const bool in = x >= vp.x && y >= vp.y && x < vp.x + vp.w && y < vp.y + vp.h &&
+                            inQuads(labels, *font, wx, wy, 1.0);
+            (in ? changedInside : changedOutside) += 1;
+            if (std::abs(int(p[0]) - 51) < 40 && std::abs(int(p[1]) - 51) < 40 &&
+                std::abs(int(p[2]) - 51) < 40)
+                for (std::size_t l = 0; l < labels.size(); ++l)
+                    if (inQuads({labels[l]}, *font, wx, wy, 0.0)) ++text[l];
+        }
+    std::cout << "street labels " << name << ": " << labels.size() << " labels, " << changedInside
+              << " changed pixels in glyph quads, " << changedOutside
+              << " outside; text pixels of the first two " << text[0] << ", " << text[1] << "\n";
+    EXPECT_EQ(changedOutside, 0) << name;
+    // A 12 px label of 13 glyphs, strokes of about 1.5 px: some 180 text pixels (at least 100).
+    for (long t : text)
+        EXPECT_GT(t, 100) << name;
+}
+} // namespace
+
+TEST(StreetLabelsGLTest, LabelsDrawnWhereLaidOutAt1920x1080AnOddSizeAndAnOffsetViewport)
+{
+    expectLabelsWhereLaidOut(1920, 1080, loatest::Viewport{0, 0, 1920, 1080});
+    expectLabelsWhereLaidOut(641, 359, loatest::Viewport{0, 0, 641, 359});
+    expectLabelsWhereLaidOut(577, 343, loatest::Viewport{37, 21, 500, 300});
+}
+
+TEST(StreetLabelsGLTest, ALabelPartlyUnderARoofIsHiddenWhole)
+{
+    // A roof 20 m above the street's middle covers the middle glyphs' centres: none of the label
+    // is drawn (the frame equals the frame without labels); moved off the label, it is drawn.
+    for (bool overLabel : {true, false})
+    {
+        // A 40 m street at 8 px/m: room for one label (the next one 300 px away would not fit).
+        osg::ref_ptr<osg::Group> scene = new osg::Group;
+        scene->addChild(namedRoad(1, "Adeline Street", 60, 40, 100, 54).get());
+        const double rx = overLabel ? 76.0 : 60.0;
+        scene->addChild(loatest::asFeature(loatest::planeQuad(rx, 44, rx + 8, 50, 0, 0, 20).get(), 2,
+                                           FeatureType::Building)
+                            .get());
+        const osg::BoundingBoxd view(40, 27, 0, 160, 67, 20);
+        const loatest::Viewport vp{0, 0, 960, 320};
+        osg::ref_ptr<osg::Image> labelled = loatest::topDown(scene.get(), "streets", 960, 320, vp, view);
+        osg::ref_ptr<osg::Image> plain = loatest::topDown(scene.get(), unlabelled(), 960, 320, vp, view);
+        long changed = 0;
+        for (int y = 0; y < 320; ++y)
+            for (int x = 0; x < 960; ++x)
+            {
+                const unsigned char *p = labelled->data(x, y), *q = plain->data(x, y);
+                changed += p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+            }
+        loatest::keepFrame("street-labels", *labelled, overLabel ? "roof-over-label" : "roof-beside-label");
+        if (overLabel)
+            EXPECT_EQ(changed, 0);
+        else
+            EXPECT_GT(changed, 500);
+    }
+}
+
+TEST(StreetLabelsGLTest, WestOaklandLabelsLieOnItsStreets)
+{
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/cache/python-osmnx-doc/West-Oakland.osm";
+    if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(model.valid());
+    osg::ComputeBoundsVisitor cbv;
+    model->accept(cbv);
+    const osg::BoundingBoxd b(cbv.getBoundingBox());
+    const int w = 1920, h = 1080;
+    const double aspect = double(w) / h;
+    const osg::Vec3d c = b.center();
+    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
+    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
+                                 c.y() + half, b.zMax());
+    const loatest::Viewport vp{0, 0, w, h};
+    osg::ref_ptr<osg::Image> labelled = loatest::topDown(model.get(), "streets", w, h, vp, view);
+    osg::ref_ptr<osg::Image> mask =
+        loatest::topDown(model.get(), loatest::typeMaskStyle(FeatureType::Street), w, h, vp, view);
+    loatest::keepFrame("street-labels", *labelled, "west-oakland-1920x1080");
+    std::vector<StreetLabels::Street> streets;
+    SignedDistanceFont* font = nullptr;
+    osg::ref_ptr<StreetLabels> holder;
+    const auto labels = topDownLabels(model.get(), view, w, h, streets, font, holder);
+    // Every glyph centre on a street pixel (magenta in the mask, within a pixel).
+    long glyphs = 0, onStreet = 0, darkInQuads = 0;
+    std::set<std::string> names;
+    for (const auto& l : labels)
+    {
+        names.insert(streets[l.street].label);
+        for (const auto& g : l.glyphs)
+        {
+            ++glyphs;
+            bool on = false;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                {
+                    const int x = int(g.centre.x()) + dx, y = int(g.centre.y()) + dy;
+                    if (x < 0 || y < 0 || x >= w || y >= h) continue;
+                    const unsigned char* p = mask->data(x, y);
+                    on = on || (p[0] > p[1] + 30 && p[2] > p[1] + 30);
+                }
+            onStreet += on;
+        }
+    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+        {
+            const unsigned char* p = labelled->data(x, y);
+            if (p[0] < 90 && p[1] < 90 && p[2] < 90 && inQuads(labels, *font, x + 0.5, y + 0.5, 0.0))
+                ++darkInQuads;
+        }
+    std::cout << "West Oakland: " << labels.size() << " labels (" << names.size() << " names), " << glyphs
+              << " glyphs, " << onStreet << " centres on streets, " << darkInQuads << " text pixels\n";
+    // 9 names by hand; "Campbell Village Court" names two footways of 131 m and 89 m, about 70
+    // and 47 px at this scale (0.53 px/m), shorter than its 22 letters at 10 px (about 150 px).
+    EXPECT_EQ(names.size(), 8u);
+    EXPECT_EQ(names.count("Campbell Village Court"), 0u);
+    EXPECT_GE(labels.size(), 8u);
+    EXPECT_EQ(onStreet, glyphs);
+    // Bold 10 px glyphs, rotated: about 6 pixels darker than 90/255 each.
+    EXPECT_GT(darkInQuads, 4 * glyphs);
 }

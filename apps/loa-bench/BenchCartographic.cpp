@@ -1,5 +1,6 @@
 // loa-bench case "cartographic": the cost of the cartographic devices of paper 004 §3.2.3
-// (waterlining, relief presentation, green-space signatures, streets) as a ratio to flat cartographic,
+// (waterlining, relief presentation, green-space signatures, streets without and with their labels) as a
+// ratio to flat cartographic,
 // measured in the same run on the same views: the demo city and the real OpenCity block, at 1280x720 and
 // 1920x1080, from the oblique and top cameras. Every frame is checked against plain rendering's coverage and
 // kept at 1920x1080 (out/bench-frames/). At 1280x720 each row also measures temporal coherence along a
@@ -8,6 +9,7 @@
 #include "BenchCase.h"
 
 #include <osgLoA/semantics/FeatureClassifier>
+#include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 
@@ -20,6 +22,15 @@
 
 std::vector<Row> cartographic(unsigned frames, std::string& renderer)
 {
+    // The streets style without its label layer: the labels' cost is streets over this.
+    osgLoA::GraphicStyleCatalog& catalog = osgLoA::GraphicStyleCatalog::instance();
+    if (!catalog.prototype("streets-unlabelled"))
+    {
+        osg::ref_ptr<osgLoA::GraphicStyle> s = catalog.create("streets");
+        s->setName("streets-unlabelled");
+        s->getParameter("loa_labels_size")->set(0.0f);
+        catalog.add(*s);
+    }
     std::vector<Row> rows;
     const std::vector<std::pair<std::string, osg::ref_ptr<osg::Node>>> scenes = demoCityAndOpenCityBlock();
     for (const auto& scene : scenes)
@@ -34,7 +45,8 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
                 const bool temporal = size.first == 1280;
                 const double plainChange = temporal ? temporalChange(*plain, 10) : 0.0;
                 double flat = 0.0;
-                for (const char* style : {"cartographic", "waterlining", "relief", "signatures", "streets"})
+                for (const char* style :
+                     {"cartographic", "waterlining", "relief", "signatures", "streets-unlabelled", "streets"})
                 {
                     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
                     loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());

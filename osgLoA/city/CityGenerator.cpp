@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 namespace osgLoA
 {
@@ -353,6 +354,29 @@ public:
         return p.river ? std::max(z, L.waterLevel + 1.8) : z; // bridges over the river
     }
 
+    /** The demo city's street names, as an American grid names them: the east-west streets
+     *  after trees ("Oak Street"; "Boulevard" for major ones), the north-south ones numbered
+     *  ("3rd Avenue"). */
+    static std::string streetName(bool alongX, size_t line, bool major)
+    {
+        if (alongX)
+        {
+            static const char* const trees[] = {"Oak",    "Elm",   "Maple", "Cedar",  "Pine",   "Birch",
+                                                "Walnut", "Aspen", "Alder", "Willow", "Poplar", "Laurel"};
+            const size_t n = sizeof(trees) / sizeof(trees[0]);
+            std::string name = trees[line % n];
+            if (line >= n) name += " " + std::to_string(line / n + 1);
+            return name + (major ? " Boulevard" : " Street");
+        }
+        const size_t k = line + 1;
+        const char* suffix = (k % 100 >= 11 && k % 100 <= 13) ? "th"
+                             : k % 10 == 1                    ? "st"
+                             : k % 10 == 2                    ? "nd"
+                             : k % 10 == 3                    ? "rd"
+                                                              : "th";
+        return std::to_string(k) + suffix + (major ? " Parkway" : " Avenue");
+    }
+
     osg::ref_ptr<osg::Node> street(bool alongX, size_t line)
     {
         const bool major = alongX ? L.roadLineYMajor[line] : L.roadLineXMajor[line];
@@ -403,6 +427,7 @@ public:
         for (double a : along)
             centreline.push_back(alongX ? osg::Vec2d(a, c) : osg::Vec2d(c, a));
         Feature::get(*f)->setCentreline(centreline);
+        Feature::get(*f)->setLabel(streetName(alongX, line, major));
         f->addChild(
             geodeWith(mb.build("TrafficArea"), states.draped(major ? "road-major" : "road-minor")).get());
         return f;

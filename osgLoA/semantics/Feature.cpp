@@ -23,7 +23,7 @@ Feature::Feature(const Feature& o, const osg::CopyOp& copyop)
     : osg::Object(o, copyop), _id(o._id), _type(o._type), _subType(o._subType), _source(o._source),
       _interest(o._interest), _landmark(o._landmark), _bestViewDirection(o._bestViewDirection),
       _bound(o._bound), _lod(o._lod), _sourceId(o._sourceId), _sourceType(o._sourceType),
-      _centreline(o._centreline)
+      _centreline(o._centreline), _label(o._label)
 {
 }
 

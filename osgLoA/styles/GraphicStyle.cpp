@@ -169,6 +169,7 @@ GraphicStyle::GraphicStyle() : _parameters(new osg::StateSet) {}
 
 GraphicStyle::GraphicStyle(const GraphicStyle& o, const osg::CopyOp& copyop)
     : osg::Object(o, copyop), _description(o._description), _fragmentShader(o._fragmentShader),
+      _geometryShader(o._geometryShader),
       _parameters(o._parameters.valid() ? copyop(o._parameters.get()) : new osg::StateSet),
       _visible(o._visible), _opaque(o._opaque), _usesTexture(o._usesTexture), _edgeColor(o._edgeColor),
       _edgeStrength(o._edgeStrength), _unsharpMaskStrength(o._unsharpMaskStrength),
@@ -176,23 +177,37 @@ GraphicStyle::GraphicStyle(const GraphicStyle& o, const osg::CopyOp& copyop)
 {
 }
 
+namespace
+{
+/** fileName unless it is not a shader file name of this stage ("NAME.<ext>.glsl", no directories
+ *  or spaces): then std::invalid_argument naming what it should be. Empty: empty. */
+const std::string& checkedShaderName(const std::string& fileName, osg::Shader::Type stage, const char* what,
+                                     const char* pattern)
+{
+    if (fileName.empty()) return fileName;
+    bool ok = false;
+    try
+    {
+        ok = ShaderLibrary::stageOf(fileName) == stage;
+    }
+    catch (const std::invalid_argument&)
+    {
+    }
+    if (!ok || fileName.find_first_of("/\\ \t\r\n") != std::string::npos)
+        throw std::invalid_argument(std::string("graphic style ") + what + " shader '" + fileName +
+                                    "' must be a file name " + pattern + " without directories or spaces");
+    return fileName;
+}
+} // namespace
+
 void GraphicStyle::setFragmentShader(const std::string& fileName)
 {
-    if (!fileName.empty())
-    {
-        bool fragment = false;
-        try
-        {
-            fragment = ShaderLibrary::stageOf(fileName) == osg::Shader::FRAGMENT;
-        }
-        catch (const std::invalid_argument&)
-        {
-        }
-        if (!fragment || fileName.find_first_of("/\\ \t\r\n") != std::string::npos)
-            throw std::invalid_argument("graphic style fragment shader '" + fileName +
-                                        "' must be a file name NAME.frag.glsl without directories or spaces");
-    }
-    _fragmentShader = fileName;
+    _fragmentShader = checkedShaderName(fileName, osg::Shader::FRAGMENT, "fragment", "NAME.frag.glsl");
+}
+
+void GraphicStyle::setGeometryShader(const std::string& fileName)
+{
+    _geometryShader = checkedShaderName(fileName, osg::Shader::GEOMETRY, "geometry", "NAME.geom.glsl");
 }
 
 void GraphicStyle::setParameters(osg::StateSet* parameters)
@@ -238,6 +253,7 @@ std::vector<std::string> GraphicStyle::shaderNames(const std::vector<std::string
         // The fixed-function library the built-in styles call (photorealistic, abstract).
         names.push_back("loa_fixed_function.frag.glsl");
         names.push_back(_fragmentShader);
+        if (!_geometryShader.empty()) names.push_back(_geometryShader);
     }
     return names;
 }
@@ -248,7 +264,16 @@ osg::ref_ptr<osg::Program> GraphicStyle::createProgram(const std::vector<std::st
         throw std::logic_error("graphic style '" + getName() + "' is not visible and has no program");
     if (_fragmentShader.empty())
         throw std::logic_error("graphic style '" + getName() + "' has no fragment shader");
-    return ShaderLibrary::createProgram("loa_style_" + getName(), shaderNames(commonShaders));
+    if (_geometryShader.empty())
+        return ShaderLibrary::createProgram("loa_style_" + getName(), shaderNames(commonShaders));
+    // With a geometry stage the vertex stages hand their outputs over under loa_vs* names.
+    osg::ref_ptr<osg::Program> p = new osg::Program;
+    p->setName("loa_style_" + getName());
+    for (const std::string& name : shaderNames(commonShaders))
+        p->addShader(ShaderLibrary::stageOf(name) == osg::Shader::VERTEX
+                         ? ShaderLibrary::createShader(name, {{"LOA_GEOMETRY_STAGE", ""}}).get()
+                         : ShaderLibrary::createShader(name).get());
+    return p;
 }
 
 void GraphicStyle::applyParameters(osg::StateSet& target) const

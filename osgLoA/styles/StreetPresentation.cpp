@@ -1,6 +1,7 @@
 /* osgLoA - level-of-abstraction visualization for OpenSceneGraph. MIT licence. */
 #include <osgLoA/semantics/FeatureSubType>
 #include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/StreetLabels>
 #include <osgLoA/styles/StreetPresentation>
 
 #include "../util/FeatureGroundRaster.h"
@@ -71,6 +72,8 @@ osg::ref_ptr<GraphicStyle> StreetPresentation::create()
     for (unsigned i = 0; i < unsigned(FeatureSubType::kCount); ++i)
         classes->setElement(i, int(classOf(names[i], 0.0)));
     ss->addUniform(classes.get());
+    // The label layer: street names along the centre lines (StreetLabels).
+    StreetLabels::addUniforms(*s);
     return s;
 }
 

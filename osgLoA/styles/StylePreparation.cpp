@@ -6,6 +6,7 @@
 #include <osgLoA/styles/StreetPresentation>
 #include <osgLoA/styles/StylePreparation>
 #include <osgLoA/styles/TextureAbstraction>
+#include <osgLoA/styles/TreeSilhouettes>
 #include <osgLoA/styles/Waterlining>
 #include <osgLoA/transitions/UsageScenario>
 
@@ -23,7 +24,7 @@ namespace osgLoA
 
 namespace
 {
-const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures", "streets"};
+const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures", "streets", "trees"};
 
 std::string join(const std::vector<std::string>& v)
 {
@@ -109,6 +110,34 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             report.skipped += unsigned(skipped.size());
             report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
             say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
+        }
+        else if (style == "trees")
+        {
+            // Triangles for the geometry stage, and the crowns the leaf sprites replace.
+            unsigned pointsOrLines = 0;
+            const unsigned converted = TreeSilhouettes::triangulate(model, &pointsOrLines);
+            if (converted)
+                say("osgLoA: trees: " + std::to_string(converted) +
+                    " quad/polygon primitive set(s) made triangles");
+            if (pointsOrLines)
+            {
+                const std::string warn = "trees: " + std::to_string(pointsOrLines) +
+                                         " point or line primitive set(s) are not drawn in this style "
+                                         "(its geometry stage takes triangles)";
+                OSG_WARN << "osgLoA: " << warn << std::endl;
+                report.messages.push_back(warn);
+            }
+            const unsigned crowns = TreeSilhouettes::markCrowns(model);
+            const std::string line =
+                "trees: " + std::to_string(crowns) + " crown drawable(s) marked" +
+                (crowns ? "" : ": the model has no tree crowns, trees draws as cartographic");
+            if (!crowns)
+            {
+                OSG_WARN << "osgLoA: " << line << std::endl;
+                report.messages.push_back(line);
+            }
+            else
+                say("osgLoA: " + line);
         }
         else if (style == "waterlining" || style == "signatures" || style == "streets")
         {

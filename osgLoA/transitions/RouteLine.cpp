@@ -16,7 +16,7 @@ namespace osgLoA
 
 namespace
 {
-osg::Uniform* uniform(osg::StateSet& ss, const char* name, osg::Uniform::Type type)
+osg::Uniform* routeUniform(osg::StateSet& ss, const char* name, osg::Uniform::Type type)
 {
     osg::Uniform* u = ss.getUniform(name);
     if (!u || u->getType() != type)
@@ -87,9 +87,9 @@ void RouteLine::apply(osg::StateSet& ss, const Segments& segments)
             "or set their LineWidth to 0)");
     const int count = int(segments.size());
     const int rows = (count + kTextureWidth - 1) / kTextureWidth;
-    uniform(ss, "loa_routeLineCount", osg::Uniform::INT)->set(count);
-    uniform(ss, "loa_routeLineRows", osg::Uniform::INT)->set(rows);
-    uniform(ss, "loa_routeLines", osg::Uniform::SAMPLER_2D)->set(int(kUnit));
+    routeUniform(ss, "loa_routeLineCount", osg::Uniform::INT)->set(count);
+    routeUniform(ss, "loa_routeLineRows", osg::Uniform::INT)->set(rows);
+    routeUniform(ss, "loa_routeLines", osg::Uniform::SAMPLER_2D)->set(int(kUnit));
     if (count == 0)
     {
         ss.removeTextureAttribute(kUnit, osg::StateAttribute::TEXTURE);

@@ -137,9 +137,10 @@ void addTwoLevels(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetri
 // A detailed level (photorealistic) over a map in which each feature type has its cartographic
 // device of paper 004 §3.2.3 (relief, waterlining, signatures, streets; cartographic for buildings
 // and the rest): the scenarios that read the context as a map.
-void addDetailOverMap(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetric>>& metrics,
-                      const BlendFunction& detailed, const BlendFunction& map,
-                      const osg::Vec2f& interestScope)
+void addDetailOverMap(
+    UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyMetric>>& metrics, const BlendFunction& detailed,
+    const BlendFunction& map, const osg::Vec2f& interestScope,
+    TransitionConfiguration::Combination combination = TransitionConfiguration::WEIGHTED_MEAN)
 {
     struct Part
     {
@@ -161,6 +162,7 @@ void addDetailOverMap(UsageScenario& s, const std::vector<osg::ref_ptr<SaliencyM
     {
         auto c = config(p.name, p.style, p.types, p.mode, p.blend);
         c->setInterestRange(interestScope);
+        c->setCombination(combination);
         for (const auto& m : metrics)
             c->addMetric(osg::clone(m.get(), osg::CopyOp::DEEP_COPY_ALL));
         s.addConfiguration(c.get());
@@ -247,18 +249,24 @@ osg::ref_ptr<UsageScenario> ScenarioLibrary::createBuiltin(const std::string& na
         // §4.1: detailed and map-like views blended by the vertical view angle, weighted with
         // the view distance so that a near bird's-eye view is not drawn in full detail;
         // landmarks (static interest >= 0.8) stay photorealistic.
-        auto s =
-            makeScenario(name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
-                               "detailed, bird's-eye views cartographic (angle 25-60 degrees, weighted "
-                               "3:1 with view distance, 0.35-2 times the camera's distance to the scene "
-                               "centre); landmarks keep their detail and, in "
-                               "map-like views, grow, turn their best view to the viewer and "
-                               "flatten, while the other buildings shrink and sink below the ground where "
-                               "they are drawn as a map (§3.2.2, Figure 1).");
+        auto s = makeScenario(
+            name, "Map-like transitions by vertical view angle (paper 004 §4.1): low views "
+                  "detailed, bird's-eye views a map (relief, waterlining, green signatures, streets "
+                  "with casings and their names): the interest is the lesser of the view angle's "
+                  "(25-60 degrees) and the view distance's (0.35-2 times the camera's distance to "
+                  "the scene centre), so a street view is detailed near the camera and a map in the "
+                  "distance; landmarks keep their detail and, in "
+                  "map-like views, grow, turn their best view to the viewer and "
+                  "flatten, while the other buildings shrink and sink below the ground where "
+                  "they are drawn as a map (§3.2.2, Figure 1).");
         osg::ref_ptr<M> distance = new M(M::VIEW_DISTANCE, 0.35, 2.0, 1.0);
         distance->setScale(M::VIEW);
-        addTwoLevels(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 3.0), distance}, "photorealistic", "cartographic",
-                     0.4f, 0.6f, osg::Vec2f(0.0f, 0.8f));
+        // The map: each feature type in its cartographic device (streets with their names).
+        // Detailed where the view is low and near (the minimum of the two interests): from the
+        // street the foreground is detailed and the distance a map, from above all is a map.
+        addDetailOverMap(*s, {new M(M::VIEW_ANGLE, 25.0, 60.0, 1.0), distance},
+                         BlendFunction(0.4f, 0.6f, 1.0f, 1.0f), BlendFunction(0.0f, 0.0f, 0.4f, 0.6f),
+                         osg::Vec2f(0.0f, 0.8f), TransitionConfiguration::MINIMUM);
         addLandmarksInDetail(*s);
         // §3.2.2: the defaults morph landmarks over the same view angles (25-60 degrees) as
         // the transitions above; non-landmark buildings shrink and sink where the scenario

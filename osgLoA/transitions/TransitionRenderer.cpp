@@ -156,10 +156,14 @@ osg::Matrixd fitDepthRange(const osg::Matrixd& p, const osg::BoundingSphere& vie
 
 /** The shaders every feature draw links: the vertex stage, the blend weights, the material's
  *  alpha test, and (for passes that draw a style) the fixed-function equations styles call. */
-void addFeatureShaders(osg::Program& p, bool styled)
+void addFeatureShaders(osg::Program& p, bool styled, const std::string& geometryShader = std::string())
 {
+    // A style's geometry stage takes the vertex stage's outputs under their loa_vs* names.
     for (const char* v : kVertexShaders)
-        p.addShader(ShaderLibrary::createShader(v).get());
+        p.addShader(geometryShader.empty()
+                        ? ShaderLibrary::createShader(v).get()
+                        : ShaderLibrary::createShader(v, {{"LOA_GEOMETRY_STAGE", ""}}).get());
+    if (!geometryShader.empty()) p.addShader(ShaderLibrary::createShader(geometryShader).get());
     p.addShader(ShaderLibrary::createShader("loa_transition.frag.glsl").get());
     p.addShader(ShaderLibrary::createShader("loa_material_alpha.frag.glsl").get());
     if (styled) p.addShader(ShaderLibrary::createShader("loa_fixed_function.frag.glsl").get());
@@ -309,6 +313,11 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _common->setDataVariance(osg::Object::DYNAMIC);
     _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
     _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
+    _viewportHeight =
+        uniform(*_common, "loa_viewportHeight", osg::Uniform::FLOAT); // leaf sprites' minimum size
+    // Not a crown unless a drawable says so (TreeSilhouettes::markCrowns): set here, since a
+    // program keeps a uniform's last value for drawables that do not set it.
+    uniform(*_common, "loa_treeCrown", osg::Uniform::BOOL)->set(false);
     uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
     // The fixed-function state the styles reproduce starts from OSG's defaults (with the
     // samplers of texture units 1 and 2); the model's
@@ -380,7 +389,8 @@ void TransitionRenderer::setSettings(const Settings& settings)
         for (auto& st : _styles)
             if (st.aBuffer.valid() && st.style.valid())
                 st.aBuffer->setAttributeAndModes(
-                    program(st.style->getFragmentShader(), "LOA_PASS_ABUFFER").get());
+                    program(st.style->getFragmentShader(), "LOA_PASS_ABUFFER", st.style->getGeometryShader())
+                        .get());
     }
     _compositing->setMergeEpsilon(s.mergeSurfaces ? s.depthEpsilon : -1.0f);
     for (auto& st : _styles)
@@ -388,16 +398,17 @@ void TransitionRenderer::setSettings(const Settings& settings)
             if (ss) ss->getOrCreateUniform("loa_depthEpsilon", osg::Uniform::FLOAT)->set(s.depthEpsilon);
 }
 
-osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleShader, const char* passDefine)
+osg::ref_ptr<osg::Program> TransitionRenderer::program(const std::string& styleShader, const char* passDefine,
+                                                       const std::string& geometryShader)
 {
     const bool routed = std::string(passDefine).find("LOA_PASS_ABUFFER") != std::string::npos;
-    const std::string key =
-        styleShader + "|" + passDefine + (routed ? std::string("|") + _aBuffer->getWriteShaderName() : "");
+    const std::string key = styleShader + "|" + geometryShader + "|" + passDefine +
+                            (routed ? std::string("|") + _aBuffer->getWriteShaderName() : "");
     auto it = _programs.find(key);
     if (it != _programs.end()) return it->second;
     osg::ref_ptr<osg::Program> p = new osg::Program;
     p->setName("loa-" + (styleShader.empty() ? std::string("depth") : styleShader) + "-" + passDefine);
-    addFeatureShaders(*p, !styleShader.empty());
+    addFeatureShaders(*p, !styleShader.empty(), geometryShader);
     if (!styleShader.empty())
     {
         // The style sees the pass's defines too, so that it can tell its own draw (the shared
@@ -544,7 +555,8 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         const float lambda = _settings.unsharpMasking ? style->getUnsharpMaskStrength() : 0.0f;
         unsharp->setElement(j, lambda);
         if (lambda > 0.0f) _maxUnsharpSigma = std::max(_maxUnsharpSigma, style->getUnsharpMaskRadius());
-        st.fusable = st.visible && st.opaque && !style->getFragmentShader().empty();
+        st.fusable = st.visible && st.opaque && !style->getFragmentShader().empty() &&
+                     style->getGeometryShader().empty(); // another stage: not in a fused program
         for (unsigned k = 0; k < j; ++k)
             if (_styles[k].parameters.valid() && st.parameters.valid() &&
                 conflicting(*_styles[k].parameters, *st.parameters))
@@ -558,7 +570,7 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         auto passState = [&](const char* define, bool frontDepthNeeded)
         {
             osg::ref_ptr<osg::StateSet> ss = new osg::StateSet;
-            ss->setAttributeAndModes(program(frag, define).get());
+            ss->setAttributeAndModes(program(frag, define, style->getGeometryShader()).get());
             ss->addUniform(new osg::Uniform("loa_configuration", int(j)));
             ss->addUniform(new osg::Uniform("loa_styleUsesTexture", style->getUsesTexture()));
             if (frontDepthNeeded)
@@ -652,8 +664,74 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
     _sharedAny.assign(n, 0);
     _aAny.assign(n, 0);
     _pingAny.assign(n, 0);
+    bindLabels(index);
     installCallbacks(index);
     _bound = true;
+}
+
+void TransitionRenderer::bindLabels(const FeatureIndex& index)
+{
+    // Street labels: the configurations whose style has a label layer (StreetLabels), the
+    // parameters of the first of them, and the model's labelled streets.
+    _labelMask = 0;
+    _labels = nullptr;
+    _labelStreetFeature.clear();
+    bool first = true;
+    for (unsigned j = 0; j < _styles.size(); ++j)
+    {
+        StreetLabels::Parameters p;
+        if (!_styles[j].style.valid() || !_styles[j].visible ||
+            !StreetLabels::parametersOf(*_styles[j].style, p))
+            continue;
+        _labelMask |= 1u << j;
+        if (first) _labelParameters = p;
+        first = false;
+    }
+    if (_labelMask == 0) return;
+    std::vector<StreetLabels::Street> streets = StreetLabels::collect(index);
+    if (streets.empty()) return;
+    try
+    {
+        _labels = new StreetLabels(streets);
+    }
+    catch (const std::exception& e)
+    {
+        // Documented fallback (docs/cartographic.md): the frame without labels, said once.
+        static bool warned = false;
+        if (!warned) OSG_WARN << "osgLoA: no street labels: " << e.what() << std::endl;
+        warned = true;
+        return;
+    }
+    for (const StreetLabels::Street& s : _labels->getStreets())
+        _labelStreetFeature.push_back(s.featureId);
+}
+
+float TransitionRenderer::labelOpacity(const ScenarioEvaluator& evaluator, std::size_t street,
+                                       const osg::Vec3d& point) const
+{
+    // The labelling configurations' share of the street's blend weights at the point: fragment
+    // matches evaluated there (as the shader does per fragment), the others as the evaluator
+    // weighed them for the feature.
+    const int fi = evaluator.findFeature(_labelStreetFeature[street]);
+    if (fi < 0) return 0.0f;
+    const ScenarioEvaluator::FeatureState& fs = evaluator.features()[std::size_t(fi)];
+    if (!fs.visible) return 0.0f;
+    const auto& configs = evaluator.getScenario()->getConfigurations();
+    const ScenarioEvaluator::Match* m = evaluator.matchesOf(fs);
+    double labelled = 0.0, total = 0.0;
+    for (unsigned k = 0; k < fs.numMatches; ++k)
+    {
+        double raw = m[k].rawWeight;
+        if (m[k].fragment && m[k].configuration < configs.size())
+        {
+            const TransitionConfiguration& c = *configs[m[k].configuration];
+            raw = c.getBlendFunction().weight(
+                float(c.interestAt(point, evaluator.getView(), fs.staticInterest)));
+        }
+        total += raw;
+        if (m[k].configuration < 32 && (_labelMask & (1u << m[k].configuration))) labelled += raw;
+    }
+    return total > 0.0 ? float(labelled / total) : 0.0f;
 }
 
 void TransitionRenderer::installCallbacks(const FeatureIndex& index)
@@ -741,6 +819,8 @@ void TransitionRenderer::unbind()
     _fusedMasks.clear();
     _featureState.clear();
     _decisions.clear();
+    _labels = nullptr;
+    _labelMask = 0;
 }
 
 void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
@@ -1005,6 +1085,7 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     bool ortho = false;
     const osg::Matrixd projection = fitDepthRange(*cv.getProjectionMatrix(), viewSphere, zNear, zFar, ortho);
     _sceneToView->set(osg::Matrixf(mv));
+    _viewportHeight->set(float(h));
     _viewToScene->set(osg::Matrixf(_viewToSceneMatrix));
 
     auto setUp = [&](osg::Camera* c)
@@ -1041,6 +1122,21 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     _compositing->setDepthRange(float(zNear), float(zFar), ortho);
     _compositing->setViewportOrigin(vp ? int(vp->x()) : 0, vp ? int(vp->y()) : 0);
     _compositing->getNode()->accept(cv);
+    // 5. Street labels over the composited frame.
+    _labelStats = StreetLabels::Statistics();
+    if (_labels.valid())
+    {
+        StreetLabels::View view;
+        view.sceneToClip = mv * projection;
+        view.width = w;
+        view.height = h;
+        const std::vector<StreetLabels::Label> labels = StreetLabels::layout(
+            _labels->getStreets(), view, _labels->getFont(), _labelParameters,
+            [&](std::size_t street, const osg::Vec3d& p) { return labelOpacity(evaluator, street, p); },
+            &_labelStats);
+        _labels->draw(cv, labels, _labelParameters, view, _gbuffer->getTexture(GeometryBuffer::DEPTH),
+                      float(zNear), float(zFar), ortho);
+    }
 }
 
 TransitionRenderer::Memory TransitionRenderer::memory(int width, int height, unsigned samples,

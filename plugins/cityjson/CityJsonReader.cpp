@@ -1404,6 +1404,10 @@ osg::ref_ptr<osg::Group> Builder::build()
         f->setSourceId(od.id);
         f->setSourceType(od.type);
         f->setLod(od.lod);
+        // The name a map prints: CityJSON has no standard attribute for it; "name" is the one
+        // the specification's examples and 3DBAG-like data use.
+        if (attributes.is_object() && attributes.contains("name") && attributes["name"].is_string())
+            f->setLabel(attributes["name"].get<std::string>());
         setAttributes(*od.group, attributes);
         if (!od.bins.empty())
         {

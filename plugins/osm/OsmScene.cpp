@@ -223,6 +223,14 @@ bool cleanLine(Ring& l)
     return l.size() >= 2;
 }
 
+/** The name a map prints for an object: its `name` tag, else its `ref` (roads known by a
+ *  number: "I 880"); empty when it has neither. */
+std::string labelOf(const Tags& tags)
+{
+    const std::string& name = tag(tags, "name");
+    return !name.empty() ? name : tag(tags, "ref");
+}
+
 /** Inserts nodes so that no segment is longer than step (step <= 0: unchanged). */
 Ring densify(const Ring& r, double step, bool closed)
 {
@@ -498,6 +506,7 @@ public:
             }
             for (const auto& kv : it.object->tags)
                 node->setUserValue("osm." + kv.first, kv.second);
+            f->setLabel(labelOf(it.object->tags));
             _groups[groupOf(it.c.type)]->addChild(node.get());
             ++_report.features;
         }

@@ -32,5 +32,7 @@ REGISTER_OBJECT_WRAPPER(osgLoA_Feature, new osgLoA::Feature, osgLoA::Feature, "o
     // Issue 19 (routes along the street network): after the older fields; the vertex count is
     // bounded like a region's.
     ADD_BOUNDED_VECTOR_SERIALIZER(Centreline, osgLoA::Feature::Centreline, osgDB::BaseSerializer::RW_VEC2D, 1);
+    // Issue 19 (street labels): the name a map prints.
+    ADD_STRING_SERIALIZER(Label, "");
 }
 // clang-format on

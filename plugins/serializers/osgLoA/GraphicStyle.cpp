@@ -19,19 +19,15 @@ namespace
 {
 typedef osgLoA::GraphicStyle Style;
 
-bool checkFragmentShader(const Style& s)
-{
-    return !s.getFragmentShader().empty();
-}
-
-bool readFragmentShader(osgDB::InputStream& is, Style& s)
+/** A shader file name through the style's checked setter; its error ends the read. */
+bool readShaderName(osgDB::InputStream& is, Style& s, void (Style::*set)(const std::string&))
 {
     std::string name;
     is.readWrappedString(name);
     if (is.getException()) return false;
     try
     {
-        s.setFragmentShader(name);
+        (s.*set)(name);
     }
     catch (const std::invalid_argument& e)
     {
@@ -41,11 +37,41 @@ bool readFragmentShader(osgDB::InputStream& is, Style& s)
     return true;
 }
 
-bool writeFragmentShader(osgDB::OutputStream& os, const Style& s)
+bool writeShaderName(osgDB::OutputStream& os, const std::string& name)
 {
-    os.writeWrappedString(s.getFragmentShader());
+    os.writeWrappedString(name);
     os << std::endl;
     return true;
+}
+
+bool checkFragmentShader(const Style& s)
+{
+    return !s.getFragmentShader().empty();
+}
+
+bool readFragmentShader(osgDB::InputStream& is, Style& s)
+{
+    return readShaderName(is, s, &Style::setFragmentShader);
+}
+
+bool writeFragmentShader(osgDB::OutputStream& os, const Style& s)
+{
+    return writeShaderName(os, s.getFragmentShader());
+}
+
+bool checkGeometryShader(const Style& s)
+{
+    return !s.getGeometryShader().empty();
+}
+
+bool readGeometryShader(osgDB::InputStream& is, Style& s)
+{
+    return readShaderName(is, s, &Style::setGeometryShader);
+}
+
+bool writeGeometryShader(osgDB::OutputStream& os, const Style& s)
+{
+    return writeShaderName(os, s.getGeometryShader());
 }
 
 bool checkEdgeColor(const Style& s)
@@ -159,4 +185,6 @@ REGISTER_OBJECT_WRAPPER(osgLoA_GraphicStyle, new osgLoA::GraphicStyle, osgLoA::G
     ADD_USER_SERIALIZER(EdgeStrength);
     ADD_USER_SERIALIZER(UnsharpMaskStrength);
     ADD_USER_SERIALIZER(UnsharpMaskRadius);
+    // Issue 19 (tree silhouettes): after the older fields.
+    ADD_USER_SERIALIZER(GeometryShader);
 }
