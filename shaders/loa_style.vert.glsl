@@ -13,6 +13,11 @@
 #define loa_texCoord1 loa_vsTexCoord1
 #define loa_texCoord2 loa_vsTexCoord2
 #define loa_color loa_vsColor
+// Per-vertex data a geometry stage may read: texture units 5-7 (ObjectSpaceEdges: barycentric
+// corner and crease mask, the neighbouring faces' normals).
+out vec4 loa_vsEdgeData0;
+out vec4 loa_vsEdgeData1;
+out vec4 loa_vsEdgeData2;
 #endif
 uniform mat4 loa_viewToScene; // view -> LoA node local coordinates
 uniform mat4 loa_sceneToView; // its inverse
@@ -44,5 +49,10 @@ void main()
     vec4 tc2 = gl_TextureMatrix[2] * gl_MultiTexCoord2;
     loa_texCoord2 = tc2.xy / (tc2.w != 0.0 ? tc2.w : 1.0);
     loa_color = gl_Color;
+#ifdef LOA_GEOMETRY_STAGE
+    loa_vsEdgeData0 = gl_MultiTexCoord5;
+    loa_vsEdgeData1 = gl_MultiTexCoord6;
+    loa_vsEdgeData2 = gl_MultiTexCoord7;
+#endif
     gl_Position = gl_ProjectionMatrix * deformed;
 }

@@ -25,21 +25,8 @@
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 32) out; // 4 x LOA_TREE_MAX_SPRITES
 
-in vec3 loa_vsScenePosition[];
-in vec3 loa_vsViewPosition[];
-in vec3 loa_vsViewNormal[];
-in vec2 loa_vsTexCoord[];
-in vec2 loa_vsTexCoord1[];
-in vec2 loa_vsTexCoord2[];
-in vec4 loa_vsColor[];
+#pragma include "loa_geometry_stage.glsl"
 
-out vec3 loa_scenePosition;
-out vec3 loa_viewPosition;
-out vec3 loa_viewNormal;
-out vec2 loa_texCoord;
-out vec2 loa_texCoord1;
-out vec2 loa_texCoord2;
-out vec4 loa_color;
 
 uniform bool loa_treeCrown = false;
 uniform float loa_trees_leafRadius = 0.6;
@@ -75,13 +62,7 @@ void loa_trees_passThrough()
 {
     for (int i = 0; i < 3; ++i)
     {
-        loa_scenePosition = loa_vsScenePosition[i];
-        loa_viewPosition = loa_vsViewPosition[i];
-        loa_viewNormal = loa_vsViewNormal[i];
-        loa_texCoord = loa_vsTexCoord[i];
-        loa_texCoord1 = loa_vsTexCoord1[i];
-        loa_texCoord2 = loa_vsTexCoord2[i];
-        loa_color = loa_vsColor[i];
+        loa_copyCorner(i);
         gl_Position = gl_in[i].gl_Position;
         EmitVertex();
     }

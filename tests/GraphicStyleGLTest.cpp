@@ -3,16 +3,23 @@
 // 32x32 quad is rendered, and the colour is compared with the CPU expectation (Brewer colour x
 // flat lighting, ColorQuantization of the texel, texture x colour x lighting).
 #include "support/TestSupport.h"
+#include "support/TopDownView.h"
 
+#include <osgLoA/city/CityCameras>
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
+#include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/styles/ColorQuantization>
 #include <osgLoA/styles/GraphicStyle>
+#include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/ObjectSpaceEdges>
 
 #include <osg/Geometry>
 #include <osg/Material>
+#include <osg/ShapeDrawable>
 #include <osg/Texture2D>
 #include <osg/Uniform>
+#include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
 
@@ -397,4 +404,241 @@ TEST(GraphicStyleGLTest, BlueprintIsAFlatBlueGroundLitSlightly)
     g->getOrCreateStateSet()->addUniform(new osg::Uniform("loa_hasTexture", true)); // ignored
     expectEverywhere(*render(g.get()), rgba(ground * GraphicStyle::lightFactor(kTilted, ambient)),
                      "blueprint");
+}
+
+// --- object-space edges (osgLoA::ObjectSpaceEdges) ------------------------------------------------
+
+namespace
+{
+/** "object-edges" with 2 px black lines and the image-space edges and unsharp masking off, and
+ *  the same without object edges (width 0, colour of no consequence): only object edges differ. */
+void registerEdgeStyles()
+{
+    GraphicStyleCatalog& catalog = GraphicStyleCatalog::instance();
+    if (catalog.prototype("test-object-edges")) return;
+    for (bool on : {true, false})
+    {
+        osg::ref_ptr<GraphicStyle> s = catalog.create("object-edges");
+        s->setName(on ? "test-object-edges" : "test-object-edges-off");
+        s->setEdgeStrength(0.0f);
+        s->setUnsharpMaskStrength(0.0f);
+        s->getParameter("loa_objectEdges_width")->set(on ? 2.0f : -2.0f);
+        s->getParameter("loa_objectEdges_color")->set(osg::Vec3f(0, 0, 0));
+        catalog.add(*s);
+    }
+}
+
+osg::ref_ptr<osg::Node> genericFeature(osg::Drawable* d)
+{
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(d);
+    return loatest::asFeature(geode.get(), 1, FeatureType::Generic);
+}
+
+/** Distance from p to segment ab. */
+double segmentDistance(const osg::Vec2d& p, const osg::Vec2d& a, const osg::Vec2d& b)
+{
+    const osg::Vec2d ab = b - a;
+    const double t = std::max(0.0, std::min(1.0, ((p - a) * ab) / (ab * ab)));
+    return (a + ab * t - p).length();
+}
+
+struct EdgeFrames
+{
+    osg::ref_ptr<osg::Image> on, off;
+};
+EdgeFrames edgeFrames(osg::Node* scene, int w, int h, const loatest::Viewport& vp, const osg::Matrixd& view,
+                      double fovy)
+{
+    registerEdgeStyles();
+    EdgeFrames f;
+    for (bool on : {true, false})
+    {
+        osg::ref_ptr<osg::Image> img = loatest::throughLoA(
+            scene,
+            ScenarioLibrary::createHomogeneous(on ? "test-object-edges" : "test-object-edges-off").get(), w,
+            h, vp,
+            [&](OffscreenRenderer& r)
+            {
+                r.getCamera()->setProjectionMatrixAsPerspective(fovy, double(vp.w) / vp.h, 1.0, 500.0);
+                r.getCamera()->setViewMatrix(view);
+            });
+        (on ? f.on : f.off) = img;
+    }
+    return f;
+}
+
+void expectCubeEdges(int w, int h, const loatest::Viewport& vp)
+{
+    // A cube of side 10 seen from a corner: its 9 visible edges (the outline's 6 and the 3 at the
+    // near corner) drawn, the faces' diagonals not.
+    osg::ref_ptr<osg::ShapeDrawable> cube = new osg::ShapeDrawable(new osg::Box(osg::Vec3(0, 0, 5), 10.0f));
+    osg::ref_ptr<osg::Node> scene = genericFeature(cube.get());
+    const osg::Matrixd view =
+        osg::Matrixd::lookAt(osg::Vec3d(24, -30, 26), osg::Vec3d(0, 0, 5), osg::Vec3d(0, 0, 1));
+    const double fovy = 40.0;
+    const EdgeFrames f = edgeFrames(scene.get(), w, h, vp, view, fovy);
+    const std::string name = std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(vp.x);
+    loatest::keepFrame("object-edges", *f.on, "cube-" + name);
+    const osg::Matrixd mvp = view * osg::Matrixd::perspective(fovy, double(vp.w) / vp.h, 1.0, 500.0);
+    auto project = [&](const osg::Vec3d& p)
+    {
+        const osg::Vec3d c = p * mvp;
+        return osg::Vec2d((c.x() * 0.5 + 0.5) * vp.w, (c.y() * 0.5 + 0.5) * vp.h);
+    };
+    // Corners: x, y in {-5, 5}, z in {0, 10}; the eye sees the +x, -y and +z faces.
+    auto corner = [&](int x, int y, int z) { return project(osg::Vec3d(5.0 * x, 5.0 * y, 10.0 * z)); };
+    const std::vector<std::pair<osg::Vec2d, osg::Vec2d>> visible = {
+        {corner(1, -1, 1), corner(1, 1, 1)},    {corner(1, -1, 1), corner(-1, -1, 1)},
+        {corner(1, -1, 1), corner(1, -1, 0)},   {corner(1, 1, 1), corner(-1, 1, 1)},
+        {corner(-1, 1, 1), corner(-1, -1, 1)},  {corner(1, 1, 1), corner(1, 1, 0)},
+        {corner(-1, -1, 1), corner(-1, -1, 0)}, {corner(1, 1, 0), corner(1, -1, 0)},
+        {corner(1, -1, 0), corner(-1, -1, 0)}};
+    long changed = 0, far = 0;
+    std::vector<std::vector<bool>> hit(visible.size());
+    for (auto& v : hit)
+        v.assign(101, false);
+    for (int y = vp.y; y < vp.y + vp.h; ++y)
+        for (int x = vp.x; x < vp.x + vp.w; ++x)
+        {
+            const unsigned char *p = f.on->data(x, y), *q = f.off->data(x, y);
+            if (std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}) <= 8)
+                continue;
+            ++changed;
+            const osg::Vec2d c(x - vp.x + 0.5, y - vp.y + 0.5);
+            double best = 1e9;
+            for (std::size_t e = 0; e < visible.size(); ++e)
+            {
+                const double d = segmentDistance(c, visible[e].first, visible[e].second);
+                best = std::min(best, d);
+                if (d < 2.5)
+                {
+                    const osg::Vec2d ab = visible[e].second - visible[e].first;
+                    const double t = ((c - visible[e].first) * ab) / (ab * ab);
+                    hit[e][std::size_t(std::max(0.0, std::min(1.0, t)) * 100.0 + 0.5)] = true;
+                }
+            }
+            far += best > 2.5;
+        }
+    std::cout << "object edges cube " << name << ": " << changed << " changed pixels, " << far
+              << " farther than 2.5 px from a visible edge\n";
+    EXPECT_EQ(far, 0) << name;
+    for (std::size_t e = 0; e < visible.size(); ++e)
+    {
+        int covered = 0;
+        for (int t = 5; t <= 95; ++t)
+            covered += hit[e][std::size_t(t)];
+        EXPECT_GE(covered, 82) << name << " edge " << e; // 90 % of 91 samples
+    }
+}
+} // namespace
+
+TEST(ObjectSpaceEdgesGLTest, CubeEdgesAt1920x1080AnOddSizeAndAnOffsetViewport)
+{
+    expectCubeEdges(1920, 1080, loatest::Viewport{0, 0, 1920, 1080});
+    expectCubeEdges(641, 359, loatest::Viewport{0, 0, 641, 359});
+    expectCubeEdges(577, 343, loatest::Viewport{37, 21, 500, 300});
+}
+
+TEST(ObjectSpaceEdgesGLTest, ASmoothCylinderShowsItsSilhouettesNotItsFacets)
+{
+    // A cylinder of 40 facets (9 degrees apart: no creases) seen from the side: lines along its two
+    // outlines and its cap, none across its side.
+    osg::ref_ptr<osg::TessellationHints> hints = new osg::TessellationHints;
+    hints->setDetailRatio(1.0f);
+    osg::ref_ptr<osg::ShapeDrawable> cyl =
+        new osg::ShapeDrawable(new osg::Cylinder(osg::Vec3(0, 0, 10), 4.0f, 20.0f), hints.get());
+    osg::ref_ptr<osg::Node> scene = genericFeature(cyl.get());
+    const int w = 641, h = 359;
+    const osg::Matrixd view =
+        osg::Matrixd::lookAt(osg::Vec3d(0, -40, 12), osg::Vec3d(0, 0, 10), osg::Vec3d(0, 0, 1));
+    const EdgeFrames f = edgeFrames(scene.get(), w, h, loatest::Viewport{0, 0, w, h}, view, 45.0);
+    loatest::keepFrame("object-edges", *f.on, "cylinder-641x359");
+    // The row through the cylinder's middle (z = 10): where it changes.
+    const osg::Matrixd mvp = view * osg::Matrixd::perspective(45.0, double(w) / h, 1.0, 500.0);
+    const int row = int((osg::Vec3d(0, 0, 10) * mvp).y() * 0.5 * h + 0.5 * h);
+    std::vector<int> xs;
+    for (int x = 0; x < w; ++x)
+    {
+        const unsigned char *p = f.on->data(x, row), *q = f.off->data(x, row);
+        if (std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}) > 8)
+            xs.push_back(x);
+    }
+    // The outline from the eye (0, -40): tangent points at x = +-4 sqrt(1 - 16/1600) = +-3.98.
+    const double xt = 4.0 * std::sqrt(1.0 - 16.0 / 1600.0), yt = -16.0 / 40.0;
+    const double left = (osg::Vec3d(-xt, yt, 10) * mvp).x() * 0.5 * w + 0.5 * w,
+                 right = (osg::Vec3d(xt, yt, 10) * mvp).x() * 0.5 * w + 0.5 * w;
+    int nearLeft = 0, nearRight = 0, elsewhere = 0;
+    for (int x : xs)
+    {
+        if (std::fabs(x + 0.5 - left) < 4.0)
+            ++nearLeft;
+        else if (std::fabs(x + 0.5 - right) < 4.0)
+            ++nearRight;
+        else
+            ++elsewhere;
+    }
+    std::cout << "object edges cylinder: row " << row << ", outline at " << left << " and " << right << ": "
+              << nearLeft << " and " << nearRight << " changed pixels there, " << elsewhere << " elsewhere\n";
+    EXPECT_GE(nearLeft, 1);
+    EXPECT_GE(nearRight, 1);
+    EXPECT_EQ(elsewhere, 0);
+}
+
+TEST(ObjectSpaceEdgesGLTest, ARealScenesGenericFeaturesGetTheirEdges)
+{
+    // TORCS street-1: 668 generic features by hand (barriers, trucks, grandstands, posts, signs):
+    // lines appear on them and nowhere else.
+    const std::string file = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/torcs-street-1.osgt";
+    if (!osgDB::fileExists(std::string(LOA_SOURCE_DIR) + "/data/cache/torcs-data"))
+        GTEST_SKIP() << "the TORCS models are absent: run scripts/fetch-test-data";
+    osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(model.valid());
+    FeatureClassifier().classify(*model);
+    registerEdgeStyles();
+    // The generic features in magenta, without image-space edges (they darken thin posts whole).
+    GraphicStyleCatalog& catalog = GraphicStyleCatalog::instance();
+    if (!catalog.prototype("test-generic-mask-flat"))
+    {
+        osg::ref_ptr<GraphicStyle> mask = catalog.create(loatest::typeMaskStyle(FeatureType::Generic));
+        mask->setName("test-generic-mask-flat");
+        mask->setEdgeStrength(0.0f);
+        mask->setUnsharpMaskStrength(0.0f);
+        catalog.add(*mask);
+    }
+    const int w = 1920, h = 1080;
+    osg::ref_ptr<osg::Image> frames[3];
+    const std::string styles[3] = {"test-object-edges", "test-object-edges-off", "test-generic-mask-flat"};
+    for (int i = 0; i < 3; ++i)
+        frames[i] = loatest::throughLoA(model.get(), ScenarioLibrary::createHomogeneous(styles[i]).get(), w,
+                                        h, loatest::Viewport{0, 0, w, h},
+                                        [&](OffscreenRenderer& r)
+                                        {
+                                            const CameraPose pose =
+                                                CityCameras::compute("street", *model, double(w) / h);
+                                            r.setPerspective(pose.fovy);
+                                            r.setViewMatrixAsLookAt(pose.eye, pose.center, pose.up);
+                                        });
+    loatest::keepFrame("object-edges", *frames[0], "torcs-street-1-1920x1080");
+    long changed = 0, onGeneric = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+        {
+            const unsigned char *p = frames[0]->data(x, y), *q = frames[1]->data(x, y);
+            if (std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}) <= 8)
+                continue;
+            ++changed;
+            bool generic = false;
+            for (int j = std::max(0, y - 2); j <= std::min(h - 1, y + 2) && !generic; ++j)
+                for (int i = std::max(0, x - 2); i <= std::min(w - 1, x + 2) && !generic; ++i)
+                {
+                    const unsigned char* m = frames[2]->data(i, j);
+                    generic = m[0] > m[1] + 30 && m[2] > m[1] + 30;
+                }
+            onGeneric += generic;
+        }
+    std::cout << "object edges on TORCS street-1: " << changed << " pixels changed, " << onGeneric
+              << " on generic features (within 2 px)\n";
+    EXPECT_GT(changed, 1000);
+    EXPECT_GT(double(onGeneric), 0.99 * double(changed));
 }

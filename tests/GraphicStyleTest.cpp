@@ -6,7 +6,9 @@
 #include <osgLoA/styles/ColorQuantization>
 #include <osgLoA/styles/GraphicStyle>
 #include <osgLoA/styles/GraphicStyleCatalog>
+#include <osgLoA/styles/ObjectSpaceEdges>
 
+#include <osg/Geometry>
 #include <osg/Uniform>
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
@@ -616,4 +618,129 @@ TEST(GraphicStyleTest, QuantizationIsIdempotentKeepsHueAndReducesChroma)
     EXPECT_GT(q.x(), q.z());
     // Alpha passes through.
     EXPECT_EQ(ColorQuantization::quantize(osg::Vec4f(0.5f, 0.5f, 0.5f, 0.25f), 5, 0.05f).w(), 0.25f);
+}
+
+// --- object-space edges (osgLoA::ObjectSpaceEdges) ------------------------------------------------
+
+namespace
+{
+/** A cube of side 10 as most exporters write it: 24 corners (4 per face, own normals), 6 quads. */
+osg::ref_ptr<osg::Geometry> cube24()
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    osg::ref_ptr<osg::Vec3Array> n = new osg::Vec3Array;
+    const osg::Vec3 axes[3] = {osg::Vec3(1, 0, 0), osg::Vec3(0, 1, 0), osg::Vec3(0, 0, 1)};
+    for (int a = 0; a < 3; ++a)
+        for (float side : {-1.0f, 1.0f})
+        {
+            const osg::Vec3 nn = axes[a] * side, u = axes[(a + 1) % 3], w = axes[(a + 2) % 3];
+            // Counter-clockwise seen from outside.
+            const osg::Vec3 c = nn * 5.0f;
+            const osg::Vec3 uu = side > 0 ? u : w, ww = side > 0 ? w : u;
+            for (const osg::Vec2& q :
+                 {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)})
+            {
+                v->push_back(c + uu * (5.0f * q.x()) + ww * (5.0f * q.y()));
+                n->push_back(nn);
+            }
+        }
+    g->setVertexArray(v.get());
+    g->setNormalArray(n.get(), osg::Array::BIND_PER_VERTEX);
+    g->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 24));
+    return g;
+}
+} // namespace
+
+TEST(ObjectSpaceEdgesTest, OctahedralNormalsRoundTrip)
+{
+    double worst = 0.0;
+    for (int i = 0; i < 2000; ++i)
+    {
+        osg::Vec3f d(std::sin(i * 1.3f) * std::cos(i * 0.7f), std::sin(i * 0.37f), std::cos(i * 2.1f) - 0.3f);
+        if (d.normalize() == 0.0f) continue;
+        worst = std::max(worst,
+                         double((ObjectSpaceEdges::octDecode(ObjectSpaceEdges::octEncode(d)) - d).length()));
+    }
+    EXPECT_LT(worst, 1e-5);
+}
+
+TEST(ObjectSpaceEdgesTest, CubeEdgesAndNeighboursByHand)
+{
+    // 6 quads = 12 triangles; welded corners make 8 points, 12 cube edges and 6 face diagonals;
+    // every edge has two faces. Of the 36 triangle sides, the 24 on cube edges see a neighbour at
+    // 90 degrees, the 12 on diagonals one in their own plane.
+    osg::ref_ptr<osg::Geometry> g = cube24();
+    ObjectSpaceEdges::Report r;
+    ASSERT_TRUE(ObjectSpaceEdges::prepareGeometry(*g, r));
+    EXPECT_EQ(r.geometries, 1u);
+    EXPECT_EQ(r.triangles, 12u);
+    EXPECT_EQ(r.edges, 18u);
+    EXPECT_EQ(r.boundary, 0u);
+    EXPECT_EQ(r.nonManifold, 0u);
+    const osg::Vec3Array& v = *static_cast<const osg::Vec3Array*>(g->getVertexArray());
+    const osg::Vec4Array& d0 =
+        *static_cast<const osg::Vec4Array*>(g->getTexCoordArray(ObjectSpaceEdges::kUnit));
+    const osg::Vec4Array& d1 =
+        *static_cast<const osg::Vec4Array*>(g->getTexCoordArray(ObjectSpaceEdges::kUnit + 1));
+    const osg::Vec4Array& d2 =
+        *static_cast<const osg::Vec4Array*>(g->getTexCoordArray(ObjectSpaceEdges::kUnit + 2));
+    ASSERT_EQ(v.size(), 36u);
+    int perpendicular = 0, coplanar = 0;
+    for (unsigned t = 0; t < 12; ++t)
+    {
+        const osg::Vec3 face = ((v[3 * t + 1] - v[3 * t]) ^ (v[3 * t + 2] - v[3 * t])) / 1.0f;
+        osg::Vec3 fn = face;
+        fn.normalize();
+        for (unsigned k = 0; k < 3; ++k)
+        {
+            EXPECT_EQ(d0[3 * t + k][k], 1.0f);
+            EXPECT_EQ(d0[3 * t + k].w(), 0.0f); // no boundary
+        }
+        const osg::Vec2f enc[3] = {osg::Vec2f(d1[3 * t].x(), d1[3 * t].y()),
+                                   osg::Vec2f(d1[3 * t].z(), d1[3 * t].w()),
+                                   osg::Vec2f(d2[3 * t].x(), d2[3 * t].y())};
+        for (const osg::Vec2f& e : enc)
+        {
+            const float c = ObjectSpaceEdges::octDecode(e) * fn;
+            perpendicular += std::fabs(c) < 1e-4f;
+            coplanar += c > 1.0f - 1e-4f;
+        }
+    }
+    EXPECT_EQ(perpendicular, 24);
+    EXPECT_EQ(coplanar, 12);
+    // A second preparation leaves the geometry alone.
+    ObjectSpaceEdges::Report again;
+    ASSERT_TRUE(ObjectSpaceEdges::prepareGeometry(*g, again));
+    EXPECT_EQ(again.geometries, 0u);
+    EXPECT_EQ(g->getVertexArray()->getNumElements(), 36u);
+}
+
+TEST(ObjectSpaceEdgesTest, AnOpenQuadHasFourBoundaryEdges)
+{
+    osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+    osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+    for (const osg::Vec3& p :
+         {osg::Vec3(0, 0, 0), osg::Vec3(4, 0, 0), osg::Vec3(4, 3, 0), osg::Vec3(0, 3, 0)})
+        v->push_back(p);
+    g->setVertexArray(v.get());
+    osg::ref_ptr<osg::DrawElementsUShort> e = new osg::DrawElementsUShort(GL_TRIANGLES);
+    for (unsigned short i : {0, 1, 2, 0, 2, 3})
+        e->push_back(i);
+    g->addPrimitiveSet(e.get());
+    ObjectSpaceEdges::Report r;
+    ASSERT_TRUE(ObjectSpaceEdges::prepareGeometry(*g, r));
+    EXPECT_EQ(r.edges, 5u);
+    EXPECT_EQ(r.boundary, 4u);
+    // Each triangle: the diagonal (opposite its corner at index 1 of (0,1,2), at 0 of (0,2,3)) has a
+    // neighbour; its two other sides are boundaries.
+    const osg::Vec4Array& d0 =
+        *static_cast<const osg::Vec4Array*>(g->getTexCoordArray(ObjectSpaceEdges::kUnit));
+    EXPECT_EQ(int(d0[0].w()), 1 | 4);
+    EXPECT_EQ(int(d0[3].w()), 1 | 2);
+    // The style: cartographic with the geometry stage.
+    osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create("object-edges");
+    ASSERT_TRUE(s.valid());
+    EXPECT_EQ(s->getGeometryShader(), "loa_object_edges.geom.glsl");
+    EXPECT_NE(s->getParameter("loa_objectEdges_width"), nullptr);
 }

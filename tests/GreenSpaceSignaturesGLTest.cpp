@@ -19,10 +19,13 @@
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/ScenarioLibrary>
 
+#include <cstring>
+#include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
 #include <osg/ShapeDrawable>
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
+#include <osgDB/WriteFile>
 
 #include <gtest/gtest.h>
 
@@ -528,4 +531,51 @@ TEST(TreeSilhouettesGLTest, TreeCardsOfARealBlockBecomeLeavesWhereTheyShowFoliag
               << " of them within 12 px of green features\n";
     EXPECT_GT(changed, 2000);
     EXPECT_GT(double(nearGreen), 0.98 * double(changed));
+}
+
+TEST(TreeSilhouettesGLTest, AScenarioFileNamesTheNewStyles)
+{
+    // A scenario file whose configurations name trees, object-edges and streets (labels): written,
+    // read back and bound to the demo city without a bind error, each style drawing.
+    // The homogeneous scenario's configuration (a metric, full weight), once per type and style.
+    osg::ref_ptr<UsageScenario> base = ScenarioLibrary::createHomogeneous("cartographic");
+    ASSERT_FALSE(base->getConfigurations().empty());
+    osg::ref_ptr<UsageScenario> s = new UsageScenario;
+    s->setName("new-styles");
+    const std::pair<const char*, FeatureType> parts[] = {
+        {"trees", FeatureType::Green},        {"object-edges", FeatureType::Generic},
+        {"streets", FeatureType::Street},     {"cartographic", FeatureType::Building},
+        {"cartographic", FeatureType::Water}, {"cartographic", FeatureType::Terrain}};
+    for (const auto& p : parts)
+    {
+        osg::ref_ptr<TransitionConfiguration> c =
+            osg::clone(base->getConfigurations().front().get(), osg::CopyOp::DEEP_COPY_ALL);
+        c->setName(std::string(p.first) + "-" + toString(p.second));
+        c->setStyle(p.first);
+        c->setFeatureTypes({p.second});
+        s->addConfiguration(c.get());
+    }
+    const std::string path = loatest::freshDirectory("TreeSilhouettesScenario") + "/new-styles.osgt";
+    ASSERT_TRUE(osgDB::writeObjectFile(*s, path));
+    osg::ref_ptr<UsageScenario> back = dynamic_cast<UsageScenario*>(osgDB::readRefObjectFile(path).get());
+    ASSERT_TRUE(back.valid());
+    ASSERT_EQ(back->getConfigurations().size(), 6u);
+    EXPECT_EQ(back->getConfigurations()[0]->getStyle(), "trees");
+    EXPECT_EQ(back->getConfigurations()[1]->getStyle(), "object-edges");
+    osg::ref_ptr<osg::Node> city = CityGenerator(CityParameters::small()).generate();
+    osg::ComputeBoundsVisitor cbv;
+    city->accept(cbv);
+    const osg::BoundingBoxd b(cbv.getBoundingBox());
+    const double half = 0.5 * std::max(b.xMax() - b.xMin(), b.yMax() - b.yMin());
+    const osg::BoundingBoxd view(b.center().x() - half * 16.0 / 9.0, b.center().y() - half, b.zMin(),
+                                 b.center().x() + half * 16.0 / 9.0, b.center().y() + half, b.zMax());
+    osg::ref_ptr<osg::Image> img =
+        loatest::topDown(city.get(), back.get(), 640, 360, Viewport{0, 0, 640, 360}, view);
+    osg::ref_ptr<osg::Image> flat =
+        loatest::topDown(city.get(), "cartographic", 640, 360, Viewport{0, 0, 640, 360}, view);
+    long differing = 0;
+    for (int y = 0; y < 360; ++y)
+        for (int x = 0; x < 640; ++x)
+            differing += std::memcmp(img->data(x, y), flat->data(x, y), 3) != 0;
+    EXPECT_GT(differing, 1000); // labels, leaves and casings
 }

@@ -382,26 +382,37 @@ TEST(TreeSilhouettesTest, QuadsBecomeTrianglesOfTheSameSurface)
     EXPECT_EQ(lines, 1u);
 }
 
-TEST(TreeSilhouettesTest, StyleRoundTripsWithItsGeometryStage)
+TEST(TreeSilhouettesTest, StylesWithAGeometryStageRoundTrip)
 {
-    osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create("trees");
-    ASSERT_TRUE(s.valid());
-    EXPECT_EQ(s->getGeometryShader(), "loa_tree_sprites.geom.glsl");
-    s->getParameter("loa_trees_density")->set(3.5f);
-    const std::string dir = loatest::freshDirectory("TreeSilhouettesTest");
-    for (const char* ext : {"osgt", "osgb"})
+    // The two styles with a geometry stage (trees, object-edges), a parameter changed.
+    const struct
     {
-        const std::string path = dir + "/trees." + ext;
-        ASSERT_TRUE(osgDB::writeObjectFile(*s, path));
-        osg::ref_ptr<GraphicStyle> back = dynamic_cast<GraphicStyle*>(osgDB::readRefObjectFile(path).get());
-        ASSERT_TRUE(back.valid()) << ext;
-        EXPECT_EQ(back->getGeometryShader(), "loa_tree_sprites.geom.glsl") << ext;
-        EXPECT_EQ(back->getFragmentShader(), "loa_style_trees.frag.glsl") << ext;
-        float d = 0.0f;
-        ASSERT_NE(back->getParameter("loa_trees_density"), nullptr);
-        back->getParameter("loa_trees_density")->get(d);
-        EXPECT_EQ(d, 3.5f) << ext;
+        const char *style, *geometry, *fragment, *parameter;
+    } cases[] = {{"trees", "loa_tree_sprites.geom.glsl", "loa_style_trees.frag.glsl", "loa_trees_density"},
+                 {"object-edges", "loa_object_edges.geom.glsl", "loa_style_object_edges.frag.glsl",
+                  "loa_objectEdges_width"}};
+    const std::string dir = loatest::freshDirectory("TreeSilhouettesTest");
+    for (const auto& c : cases)
+    {
+        osg::ref_ptr<GraphicStyle> s = GraphicStyleCatalog::instance().create(c.style);
+        ASSERT_TRUE(s.valid()) << c.style;
+        EXPECT_EQ(s->getGeometryShader(), c.geometry);
+        s->getParameter(c.parameter)->set(3.5f);
+        for (const char* ext : {"osgt", "osgb"})
+        {
+            const std::string path = dir + "/" + c.style + "." + ext;
+            ASSERT_TRUE(osgDB::writeObjectFile(*s, path));
+            osg::ref_ptr<GraphicStyle> back =
+                dynamic_cast<GraphicStyle*>(osgDB::readRefObjectFile(path).get());
+            ASSERT_TRUE(back.valid()) << path;
+            EXPECT_EQ(back->getGeometryShader(), c.geometry) << path;
+            EXPECT_EQ(back->getFragmentShader(), c.fragment) << path;
+            float v = 0.0f;
+            ASSERT_NE(back->getParameter(c.parameter), nullptr) << path;
+            back->getParameter(c.parameter)->get(v);
+            EXPECT_EQ(v, 3.5f) << path;
+        }
+        EXPECT_THROW(s->setGeometryShader("loa_style_trees.frag.glsl"), std::invalid_argument);
+        EXPECT_THROW(s->setGeometryShader("../x.geom.glsl"), std::invalid_argument);
     }
-    EXPECT_THROW(s->setGeometryShader("loa_style_trees.frag.glsl"), std::invalid_argument);
-    EXPECT_THROW(s->setGeometryShader("../x.geom.glsl"), std::invalid_argument);
 }

@@ -722,7 +722,8 @@ TEST(TransitionRendererGLTest, SpecializedBlendWeightsEqualTheGenericOnes)
 // its own tests (CPU twins, masks); these catch any change of the picture.
 namespace
 {
-const char* const kCartographicStyles[] = {"cartographic", "waterlining", "relief", "signatures", "streets"};
+const char* const kCartographicStyles[] = {"cartographic", "waterlining", "relief",      "signatures",
+                                           "streets",      "trees",       "object-edges"};
 } // namespace
 
 TEST(TransitionRendererGLTest, EveryCartographicStyleMatchesGoldensOnTheDemoCity)

@@ -45,8 +45,8 @@ std::vector<Row> cartographic(unsigned frames, std::string& renderer)
                 const bool temporal = size.first == 1280;
                 const double plainChange = temporal ? temporalChange(*plain, 10) : 0.0;
                 double flat = 0.0;
-                for (const char* style :
-                     {"cartographic", "waterlining", "relief", "signatures", "streets-unlabelled", "streets"})
+                for (const char* style : {"cartographic", "waterlining", "relief", "signatures",
+                                          "streets-unlabelled", "streets", "trees", "object-edges"})
                 {
                     osg::ref_ptr<osgLoA::LoANode> loa = new osgLoA::LoANode;
                     loa->setScenario(osgLoA::ScenarioLibrary::createHomogeneous(style).get());

@@ -3,6 +3,7 @@
 #include <osgLoA/palette/PaletteMapping>
 #include <osgLoA/styles/GraphicStyleCatalog>
 #include <osgLoA/styles/GreenSpaceSignatures>
+#include <osgLoA/styles/ObjectSpaceEdges>
 #include <osgLoA/styles/StreetPresentation>
 #include <osgLoA/styles/StylePreparation>
 #include <osgLoA/styles/TextureAbstraction>
@@ -24,7 +25,15 @@ namespace osgLoA
 
 namespace
 {
-const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures", "streets", "trees"};
+const char* const kKnown[] = {"abstract", "palette", "waterlining", "signatures",
+                              "streets",  "trees",   "object-edges"};
+
+/** A style name as its shader files spell it ("object-edges": object_edges). */
+std::string shaderWord(std::string style)
+{
+    std::replace(style.begin(), style.end(), '-', '_');
+    return style;
+}
 
 std::string join(const std::vector<std::string>& v)
 {
@@ -46,7 +55,7 @@ std::vector<std::string> StylePreparation::stylesNeeded(const UsageScenario& sce
             if (!c.valid()) continue;
             osg::ref_ptr<const GraphicStyle> p = GraphicStyleCatalog::instance().prototype(c->getStyle());
             if (c->getStyle() == style ||
-                (p.valid() && p->getFragmentShader() == std::string("loa_style_") + style + ".frag.glsl"))
+                (p.valid() && p->getFragmentShader() == "loa_style_" + shaderWord(style) + ".frag.glsl"))
             {
                 out.push_back(style);
                 break;
@@ -110,6 +119,21 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
             report.skipped += unsigned(skipped.size());
             report.messages.insert(report.messages.end(), skipped.begin(), skipped.end());
             say("osgLoA: palette style: " + std::to_string(report.palettes) + " texture palette(s) built");
+        }
+        else if (style == "object-edges")
+        {
+            // Edge data for the generic features' geometry (ObjectSpaceEdges::prepare).
+            const unsigned converted = TreeSilhouettes::triangulate(model);
+            const ObjectSpaceEdges::Report r = ObjectSpaceEdges::prepare(model);
+            say("osgLoA: object-edges: " + std::to_string(r.geometries) + " generic geometries, " +
+                std::to_string(r.triangles) + " triangles, " + std::to_string(r.edges) + " edges (" +
+                std::to_string(r.boundary) + " boundary, " + std::to_string(r.nonManifold) +
+                " non-manifold)" +
+                (converted ? ", " + std::to_string(converted) + " quad/polygon sets made triangles"
+                           : std::string()));
+            if (r.skipped)
+                report.messages.push_back("object-edges: " + std::to_string(r.skipped) +
+                                          " geometries draw without object-space edges (array types)");
         }
         else if (style == "trees")
         {

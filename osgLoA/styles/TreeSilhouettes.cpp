@@ -27,18 +27,6 @@ struct TreesRegistrar
 
 const char* const kCrownUniform = "loa_treeCrown";
 
-/** Collects the vertex indices of a primitive set's triangles (osg::TriangleIndexFunctor). */
-struct TriangleIndices
-{
-    std::vector<unsigned>* out = nullptr;
-    void operator()(unsigned a, unsigned b, unsigned c)
-    {
-        out->push_back(a);
-        out->push_back(b);
-        out->push_back(c);
-    }
-};
-
 /** Marks crowns: TreeCrown drawables anywhere, textured drawables with alpha inside green
  *  features (the innermost feature decides). */
 class CrownMarker : public osg::NodeVisitor
@@ -113,7 +101,7 @@ private:
         const osg::Vec2Array* tc = dynamic_cast<const osg::Vec2Array*>(g.getTexCoordArray(0));
         if (!tc || tc->empty() || img.s() < 1 || img.t() < 1 || !img.data()) return 0.0;
         std::vector<unsigned> idx;
-        osg::TriangleIndexFunctor<TriangleIndices> f;
+        osg::TriangleIndexFunctor<TriangleIndexList> f;
         f.out = &idx;
         const_cast<osg::Geometry&>(g).accept(f);
         long samples = 0, translucent = 0;
@@ -198,7 +186,7 @@ public:
                 ++pointsOrLines;
             if (mode != GL_QUADS && mode != GL_QUAD_STRIP && mode != GL_POLYGON) continue;
             std::vector<unsigned> indices;
-            osg::TriangleIndexFunctor<TriangleIndices> f;
+            osg::TriangleIndexFunctor<TriangleIndexList> f;
             f.out = &indices;
             ps->accept(f);
             osg::ref_ptr<osg::DrawElementsUInt> tris =

@@ -313,8 +313,9 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     _common->setDataVariance(osg::Object::DYNAMIC);
     _viewToScene = uniform(*_common, "loa_viewToScene", osg::Uniform::FLOAT_MAT4);
     _sceneToView = uniform(*_common, "loa_sceneToView", osg::Uniform::FLOAT_MAT4);
-    _viewportHeight =
-        uniform(*_common, "loa_viewportHeight", osg::Uniform::FLOAT); // leaf sprites' minimum size
+    // The viewport, for geometry stages (leaf sprites' minimum size, object edges' widths).
+    _viewportHeight = uniform(*_common, "loa_viewportHeight", osg::Uniform::FLOAT);
+    _viewportWidth = uniform(*_common, "loa_viewportWidth", osg::Uniform::FLOAT);
     // Not a crown unless a drawable says so (TreeSilhouettes::markCrowns): set here, since a
     // program keeps a uniform's last value for drawables that do not set it.
     uniform(*_common, "loa_treeCrown", osg::Uniform::BOOL)->set(false);
@@ -1086,6 +1087,7 @@ void TransitionRenderer::cull(osgUtil::CullVisitor& cv, const ScenarioEvaluator&
     const osg::Matrixd projection = fitDepthRange(*cv.getProjectionMatrix(), viewSphere, zNear, zFar, ortho);
     _sceneToView->set(osg::Matrixf(mv));
     _viewportHeight->set(float(h));
+    _viewportWidth->set(float(w));
     _viewToScene->set(osg::Matrixf(_viewToSceneMatrix));
 
     auto setUp = [&](osg::Camera* c)

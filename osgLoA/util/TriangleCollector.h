@@ -31,6 +31,19 @@ private:
     std::vector<osg::Vec3d> _corners;
 };
 
+/** Collects the vertex indices of the triangles an osg::TriangleIndexFunctor<TriangleIndexList>
+ *  visits (strips, fans, quads and polygons split), three per triangle, into *out. */
+struct TriangleIndexList
+{
+    std::vector<unsigned>* out = nullptr;
+    void operator()(unsigned a, unsigned b, unsigned c)
+    {
+        out->push_back(a);
+        out->push_back(b);
+        out->push_back(c);
+    }
+};
+
 } // namespace osgLoA
 
 #endif
