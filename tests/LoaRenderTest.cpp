@@ -120,10 +120,12 @@ TEST(LoaRenderTest, ListStylesPrintsEveryStyleWithItsDescription)
                              "waterlining",
                              "relief",
                              "signatures",
-                             "streets"})
+                             "streets",
+                             "trees",
+                             "object-edges"})
         EXPECT_NE(std::find(lines.begin(), lines.end(), name), lines.end()) << name << " missing in:\n"
                                                                             << out;
-    EXPECT_EQ(lines.size(), 24u) << out;
+    EXPECT_EQ(lines.size(), 26u) << out;
 }
 
 TEST(LoaRenderTest, HelpDocumentsEveryOption)
