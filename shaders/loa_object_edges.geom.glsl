@@ -13,7 +13,8 @@
 // from their own windings). Each corner gets its
 // distance in pixels to the opposite edge (noperspective), so the fragment stage knows its
 // distance to each edge of its triangle (Baerentzen et al. 2006's single-pass wireframe).
-// Triangles without edge data (other features) pass through with no edge.
+// Drawables without edge data (loa_objectEdgesData false: other features) pass through with no
+// edge.
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 
@@ -30,6 +31,7 @@ flat out int loa_edgeFull;               // bit k: ... at full width (silhouette
 uniform float loa_viewportHeight = 1080.0;
 uniform float loa_viewportWidth = 1920.0;
 uniform float loa_objectEdges_creaseDegrees = 30.0;
+uniform bool loa_objectEdgesData = false; // this drawable has edge data (ObjectSpaceEdges::prepare)
 
 vec3 loa_octDecode(vec2 e)
 {
@@ -43,7 +45,7 @@ void main()
 {
     // The corner order the data was written in: corner k has its one-hot coordinate k.
     int mask = 0, full = 0;
-    bool prepared = loa_vsEdgeData0[0].x + loa_vsEdgeData0[0].y + loa_vsEdgeData0[0].z > 0.5;
+    bool prepared = loa_objectEdgesData;
     vec3 distance = vec3(0.0);
     if (prepared)
     {
@@ -51,7 +53,9 @@ void main()
         full = mask;
         // The face's normal and its side towards the eye, in view space.
         vec3 a = loa_vsViewPosition[0], b = loa_vsViewPosition[1], c = loa_vsViewPosition[2];
-        vec3 face = normalize(cross(b - a, c - a));
+        // Under a mirroring transform (negative determinant) the corners' winding turns over while
+        // the normal matrix keeps the neighbours' normals outward: turn the face's back.
+        vec3 face = normalize(cross(b - a, c - a)) * (determinant(mat3(gl_ModelViewMatrix)) < 0.0 ? -1.0 : 1.0);
         bool ortho = gl_ProjectionMatrix[3][3] == 1.0;
         vec2 adjacent[3] = vec2[3](loa_vsEdgeData1[0].xy, loa_vsEdgeData1[0].zw, loa_vsEdgeData2[0].xy);
         vec3 corners[3] = vec3[3](a, b, c);

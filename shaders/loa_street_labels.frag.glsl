@@ -27,12 +27,15 @@ float loa_labelLinearDepth(float d)
 }
 
 // Whether an opaque surface lies in front of the street at pixel p (more than 2 % of the
-// street's distance in front: the street itself is in the G-buffer there).
+// street's distance in front, or of the depth range in orthographic views: the street itself is
+// in the G-buffer there).
 bool loa_labelHidden(vec2 p, float streetDepth)
 {
     float front = loa_labelLinearDepth(texelFetch(loa_labelDepth, ivec2(p), 0).r);
     float street = loa_labelLinearDepth(streetDepth);
-    return front < street - 0.02 * abs(street);
+    // Orthographic: 2 % of the depth range (the distance from the eye means nothing there).
+    float tolerance = loa_labelOrthographic ? 0.02 * (loa_labelDepthRange.y - loa_labelDepthRange.x) : 0.02 * abs(street);
+    return front < street - tolerance;
 }
 
 void main()

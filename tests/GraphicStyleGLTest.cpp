@@ -16,6 +16,7 @@
 
 #include <osg/Geometry>
 #include <osg/Material>
+#include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osg/Texture2D>
 #include <osg/Uniform>
@@ -468,17 +469,26 @@ EdgeFrames edgeFrames(osg::Node* scene, int w, int h, const loatest::Viewport& v
     return f;
 }
 
-void expectCubeEdges(int w, int h, const loatest::Viewport& vp)
+void expectCubeEdges(int w, int h, const loatest::Viewport& vp, bool mirrored = false)
 {
     // A cube of side 10 seen from a corner: its 9 visible edges (the outline's 6 and the 3 at the
-    // near corner) drawn, the faces' diagonals not.
+    // near corner) drawn, the faces' diagonals not. Mirrored (x -> -x: the same cube, its
+    // triangles' winding turned over by the transform) the same.
     osg::ref_ptr<osg::ShapeDrawable> cube = new osg::ShapeDrawable(new osg::Box(osg::Vec3(0, 0, 5), 10.0f));
     osg::ref_ptr<osg::Node> scene = genericFeature(cube.get());
+    if (mirrored)
+    {
+        osg::ref_ptr<osg::MatrixTransform> mirror =
+            new osg::MatrixTransform(osg::Matrixd::scale(-1.0, 1.0, 1.0));
+        mirror->addChild(scene.get());
+        scene = mirror;
+    }
     const osg::Matrixd view =
         osg::Matrixd::lookAt(osg::Vec3d(24, -30, 26), osg::Vec3d(0, 0, 5), osg::Vec3d(0, 0, 1));
     const double fovy = 40.0;
     const EdgeFrames f = edgeFrames(scene.get(), w, h, vp, view, fovy);
-    const std::string name = std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(vp.x);
+    const std::string name = std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(vp.x) +
+                             (mirrored ? "-mirrored" : "");
     loatest::keepFrame("object-edges", *f.on, "cube-" + name);
     const osg::Matrixd mvp = view * osg::Matrixd::perspective(fovy, double(vp.w) / vp.h, 1.0, 500.0);
     auto project = [&](const osg::Vec3d& p)
@@ -538,6 +548,7 @@ TEST(ObjectSpaceEdgesGLTest, CubeEdgesAt1920x1080AnOddSizeAndAnOffsetViewport)
     expectCubeEdges(1920, 1080, loatest::Viewport{0, 0, 1920, 1080});
     expectCubeEdges(641, 359, loatest::Viewport{0, 0, 641, 359});
     expectCubeEdges(577, 343, loatest::Viewport{37, 21, 500, 300});
+    expectCubeEdges(641, 359, loatest::Viewport{0, 0, 641, 359}, true);
 }
 
 TEST(ObjectSpaceEdgesGLTest, ASmoothCylinderShowsItsSilhouettesNotItsFacets)

@@ -340,6 +340,48 @@ TEST(StreetLabelsTest, NeverUpsideDownAndVerticalLabelsReadUpwards)
         EXPECT_NEAR(g.angle, 0.25 * kPiTest, 1e-9);
 }
 
+TEST(StreetLabelsTest, InPerspectiveTheAnchorIsThePerspectiveCorrectPointOfTheStreet)
+{
+    // A street running away from a camera 2 m above it, from 5 m to 400 m ahead and crossing the
+    // near plane behind: the label's scene anchor projects onto its window anchor (the scene point
+    // is interpolated perspective-correctly between the projected vertices), and every glyph's
+    // depth is the projection's depth of the street there (it grows along the street).
+    StreetLabels::Parameters p;
+    StreetLabels::View v;
+    v.width = 1920;
+    v.height = 1080;
+    const osg::Matrixd mv =
+        osg::Matrixd::lookAt(osg::Vec3d(0, 0, 2), osg::Vec3d(0, 1, 2), osg::Vec3d(0, 0, 1));
+    v.sceneToClip = mv * osg::Matrixd::perspective(60.0, 1920.0 / 1080.0, 0.5, 1000.0);
+    // Slanted so that its window line is long enough for a label.
+    const auto labels =
+        StreetLabels::layout({street("Oak Street", {{-3, -20, 0}, {2, 5, 0}, {60, 400, 0}})}, v, font(), p);
+    ASSERT_GE(labels.size(), 1u);
+    for (const auto& l : labels)
+    {
+        const osg::Vec4d c = osg::Vec4d(l.sceneAnchor, 1.0) * v.sceneToClip;
+        const osg::Vec2d w((c.x() / c.w() * 0.5 + 0.5) * v.width, (c.y() / c.w() * 0.5 + 0.5) * v.height);
+        EXPECT_LT((w - l.anchor).length(), 1e-6);
+        EXPECT_NEAR(l.sceneAnchor.z(), 0.0, 1e-9);
+        for (const auto& g : l.glyphs)
+        {
+            EXPECT_GT(g.depth, 0.0);
+            EXPECT_LT(g.depth, 1.0);
+        }
+    }
+}
+
+TEST(StreetLabelsTest, AFontWithoutACharacterGivesABlankNotABox)
+{
+    // U+10FFFC is in no font (a private-use plane): FreeType gives the .notdef box, counted missing.
+    osg::ref_ptr<SignedDistanceFont> f = new SignedDistanceFont(SignedDistanceFont::defaultFontFile());
+    f->require({'A', 0x10FFFCu});
+    EXPECT_EQ(f->getMissing(), 1u);
+    ASSERT_NE(f->glyph(0x10FFFCu), nullptr);
+    EXPECT_TRUE(f->glyph(0x10FFFCu)->blank);
+    EXPECT_FALSE(f->glyph('A')->blank);
+}
+
 TEST(StreetLabelsTest, ShortStreetsCornersAndTheViewportLeaveLabelsOut)
 {
     StreetLabels::Parameters p;

@@ -57,9 +57,9 @@ osg::ref_ptr<osg::Array> deindexed(const osg::Array& src, const std::vector<unsi
     return out;
 }
 
-bool perVertex(const osg::Array* a, unsigned vertices)
+bool perVertex(const osg::Array* a)
 {
-    return a && a->getBinding() == osg::Array::BIND_PER_VERTEX && a->getNumElements() >= vertices;
+    return a && a->getBinding() == osg::Array::BIND_PER_VERTEX;
 }
 
 class GenericGeometry : public osg::NodeVisitor
@@ -226,9 +226,14 @@ bool ObjectSpaceEdges::prepareGeometry(osg::Geometry& g, Report& report)
 
     // Every triangle its own corners, with its edge data on units 5-7.
     std::vector<unsigned> order(idx.begin(), idx.end());
+    // Per-vertex arrays are rewritten; one shorter than the vertices, or bound per primitive set
+    // (its meaning tied to the primitive sets replaced here), cannot be.
     auto rewrite = [&](osg::Array* a) -> osg::ref_ptr<osg::Array>
     {
-        if (!perVertex(a, n)) return a;
+        if (!a) return a;
+        if (a->getBinding() == osg::Array::BIND_PER_PRIMITIVE_SET) return nullptr;
+        if (!perVertex(a)) return a;
+        if (a->getNumElements() < n) return nullptr;
         return deindexed(*a, order);
     };
     osg::ref_ptr<osg::Array> v = rewrite(g.getVertexArray()), nrm = rewrite(g.getNormalArray()),
@@ -267,6 +272,10 @@ bool ObjectSpaceEdges::prepareGeometry(osg::Geometry& g, Report& report)
     g.removePrimitiveSet(0, g.getNumPrimitiveSets());
     g.addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, GLsizei(3 * T)));
     g.setUserValue(kPreparedValue, true);
+    // The geometry stage's marker (a StateSet shared with other drawables is copied first).
+    if (g.getStateSet() && g.getStateSet()->referenceCount() > 1)
+        g.setStateSet(osg::clone(g.getStateSet(), osg::CopyOp::SHALLOW_COPY));
+    g.getOrCreateStateSet()->addUniform(new osg::Uniform("loa_objectEdgesData", true));
     g.dirtyGLObjects();
     g.dirtyBound();
     ++report.geometries;

@@ -46,6 +46,18 @@ SignedDistanceFont::SignedDistanceFont(const std::string& fontFile, const Parame
     // The cap height centres labels on their line.
     const osgText::FontResolution res(unsigned(p.renderPixels), unsigned(p.renderPixels));
     if (osgText::Glyph* h = _font->getGlyph(res, 'H')) _capHeight = h->getHeight();
+    // FreeType answers a code point the font lacks with its .notdef glyph (a box): remembered from a
+    // private-use code point no font maps, so that require() can tell it.
+    _notdef = _font->getGlyph(res, 0x10FFFDu);
+}
+
+bool SignedDistanceFont::isNotdef(const osg::Image& glyph) const
+{
+    if (!_notdef.valid() || &glyph == _notdef.get()) return _notdef.valid();
+    if (glyph.s() != _notdef->s() || glyph.t() != _notdef->t()) return false;
+    if (glyph.getTotalSizeInBytes() != _notdef->getTotalSizeInBytes()) return false;
+    return glyph.getTotalSizeInBytes() == 0 ||
+           std::equal(glyph.data(), glyph.data() + glyph.getTotalSizeInBytes(), _notdef->data());
 }
 
 SignedDistanceFont::SignedDistanceFont(const std::string& fontFile)
@@ -128,7 +140,7 @@ void SignedDistanceFont::require(const std::vector<unsigned>& codes)
         Glyph g;
         g.code = code;
         osgText::Glyph* src = _font->getGlyph(res, code);
-        if (!src)
+        if (!src || (code != 0x10FFFDu && isNotdef(*src)))
         {
             ++_missing;
             g.advance = 0.5f;

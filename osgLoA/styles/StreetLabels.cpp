@@ -142,6 +142,13 @@ void corners(const osg::Vec2d& centre, double angle, double x0, double y0, doubl
         c[i] = centre + osg::Vec2d(xs[i] * cs - ys[i] * sn, xs[i] * sn + ys[i] * cs);
 }
 
+/** Glyph quads are given in window pixels: no bound in the scene (an OSG bound would be taken
+ *  for scene coordinates by the cull's near/far computation and small-feature culling). */
+struct NoSceneBound : public osg::Drawable::ComputeBoundingBoxCallback
+{
+    osg::BoundingBox computeBound(const osg::Drawable&) const override { return osg::BoundingBox(); }
+};
+
 template <typename T> void setUniform(osg::StateSet& ss, const char* name, const T& v)
 {
     if (osg::Uniform* u = ss.getUniform(name))
@@ -375,18 +382,53 @@ std::vector<StreetLabels::Label> StreetLabels::layout(const std::vector<Street>&
         }
         const double S = run.length();
         if (S < std::min(classSize, double(p.minPixels)) * textEm) continue;
+        // The stretch of the run in the viewport (a guard band of a label's length around it): a
+        // line reaching just past the near plane runs far outside the window, where no label can
+        // go. Candidates are tried there only.
+        double s0 = S, s1 = 0.0;
+        {
+            const double band = classSize * textEm;
+            const double x0 = -band, y0 = -band, x1 = view.width + band, y1 = view.height + band;
+            for (std::size_t i = 0; i + 1 < run.v.size(); ++i)
+            {
+                // Liang-Barsky: the part of segment i inside the band rectangle.
+                const osg::Vec2d a = run.v[i].win, d = run.v[i + 1].win - a;
+                double t0 = 0.0, t1 = 1.0;
+                bool inside = true;
+                const double ps[4] = {-d.x(), d.x(), -d.y(), d.y()};
+                const double qs[4] = {a.x() - x0, x1 - a.x(), a.y() - y0, y1 - a.y()};
+                for (int e = 0; e < 4 && inside; ++e)
+                {
+                    if (ps[e] == 0.0)
+                        inside = qs[e] >= 0.0;
+                    else
+                    {
+                        const double t = qs[e] / ps[e];
+                        if (ps[e] < 0.0)
+                            t0 = std::max(t0, t);
+                        else
+                            t1 = std::min(t1, t);
+                        inside = t0 <= t1;
+                    }
+                }
+                if (!inside) continue;
+                const double len = run.s[i + 1] - run.s[i];
+                s0 = std::min(s0, run.s[i] + t0 * len);
+                s1 = std::max(s1, run.s[i] + t1 * len);
+            }
+        }
+        if (s1 - s0 < std::min(classSize, double(p.minPixels)) * textEm) continue;
         ++st.streets;
         const double step = std::max(8.0, 0.25 * classSize * textEm);
+        const double middle = 0.5 * (s0 + s1);
         for (int k = 0;; ++k)
         {
-            // 0, +1, -1, +2, -2, ... steps from the middle.
+            // 0, +1, -1, +2, -2, ... steps from the middle of the visible stretch.
             const double offset = step * double((k + 1) / 2) * (k % 2 ? 1.0 : -1.0);
-            if (std::fabs(offset) > 0.5 * S) break;
-            const double sc = 0.5 * S + offset;
+            if (std::fabs(offset) > 0.5 * (s1 - s0)) break;
+            const double sc = middle + offset;
             ++st.candidates;
             const Along anchor = along(run, sc);
-            const float o = opacity ? opacity(run.street, anchor.scene) : 1.0f;
-            if (!(o >= p.minOpacity)) continue;
             // The size: the street's width in pixels at the anchor, clamped.
             double size = classSize;
             if (street.width > 0.0)
@@ -425,7 +467,7 @@ std::vector<StreetLabels::Label> StreetLabels::layout(const std::vector<Street>&
             Label label;
             label.street = run.street;
             label.size = size;
-            label.opacity = std::min(1.0f, o);
+            label.opacity = 1.0f;
             label.anchor = anchor.win;
             label.sceneAnchor = anchor.scene;
             label.reversed = reversed;
@@ -466,6 +508,10 @@ std::vector<StreetLabels::Label> StreetLabels::layout(const std::vector<Street>&
                 label.glyphs.push_back(pg);
             }
             if (!ok || label.glyphs.empty()) continue;
+            // The opacity last: it evaluates the scenario's metrics at the anchor.
+            const float o = opacity ? opacity(run.street, anchor.scene) : 1.0f;
+            if (!(o >= p.minOpacity)) continue;
+            label.opacity = std::min(1.0f, o);
             bool repeated = false;
             for (const Label& other : labels)
                 if (streets[other.street].label == street.label &&
@@ -565,6 +611,7 @@ StreetLabels::StreetLabels(const std::vector<Street>& streets, const std::string
         _geometries[i]->setUseVertexBufferObjects(true);
         _geometries[i]->setDataVariance(osg::Object::DYNAMIC);
         _geometries[i]->setCullingActive(false);
+        _geometries[i]->setComputeBoundingBoxCallback(new NoSceneBound);
         _geometries[i]->setVertexArray(new osg::Vec2Array);
         _geometries[i]->setTexCoordArray(0, new osg::Vec2Array, osg::Array::BIND_PER_VERTEX);
         _geometries[i]->setTexCoordArray(1, new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
@@ -657,7 +704,10 @@ void StreetLabels::draw(osgUtil::CullVisitor& cv, const std::vector<Label>& labe
                 tex.push_back(uv[i]);
                 centre.push_back(
                     osg::Vec4(float(pg.centre.x()), float(pg.centre.y()), float(pg.depth), l.opacity));
-                field.push_back(osg::Vec2(texelsPerPixel / (2.0f * spread), spread / texelsPerPixel));
+                // The widest halo the field holds: its outer texel is spread - 1/2 texels from the
+                // outline and the filter reaches half a pixel beyond the halo's edge.
+                field.push_back(osg::Vec2(texelsPerPixel / (2.0f * spread),
+                                          std::max(0.0f, (spread - 1.0f) / texelsPerPixel - 0.5f)));
                 span.push_back(labelSpan);
             }
             for (unsigned k : {0u, 1u, 2u, 0u, 2u, 3u})

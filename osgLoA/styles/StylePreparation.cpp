@@ -106,6 +106,22 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
         else
             OSG_NOTICE << line << std::endl;
     };
+    // The styles with a geometry stage take triangles: quads and polygons made triangles, points
+    // and lines (which they cannot draw) counted in a warning. Returns the sets converted.
+    auto triangulate = [&](const std::string& style)
+    {
+        unsigned pointsOrLines = 0;
+        const unsigned converted = TreeSilhouettes::triangulate(model, &pointsOrLines);
+        if (pointsOrLines)
+        {
+            const std::string warn = style + ": " + std::to_string(pointsOrLines) +
+                                     " point or line primitive set(s) are not drawn in this style "
+                                     "(its geometry stage takes triangles)";
+            OSG_WARN << "osgLoA: " << warn << std::endl;
+            report.messages.push_back(warn);
+        }
+        return converted;
+    };
     for (const std::string& style : stylesNeeded(scenario))
     {
         if (std::find(done.begin(), done.end(), style) != done.end()) continue;
@@ -123,7 +139,7 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
         else if (style == "object-edges")
         {
             // Edge data for the generic features' geometry (ObjectSpaceEdges::prepare).
-            const unsigned converted = TreeSilhouettes::triangulate(model);
+            const unsigned converted = triangulate(style);
             const ObjectSpaceEdges::Report r = ObjectSpaceEdges::prepare(model);
             say("osgLoA: object-edges: " + std::to_string(r.geometries) + " generic geometries, " +
                 std::to_string(r.triangles) + " triangles, " + std::to_string(r.edges) + " edges (" +
@@ -138,19 +154,10 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
         else if (style == "trees")
         {
             // Triangles for the geometry stage, and the crowns the leaf sprites replace.
-            unsigned pointsOrLines = 0;
-            const unsigned converted = TreeSilhouettes::triangulate(model, &pointsOrLines);
+            const unsigned converted = triangulate(style);
             if (converted)
                 say("osgLoA: trees: " + std::to_string(converted) +
                     " quad/polygon primitive set(s) made triangles");
-            if (pointsOrLines)
-            {
-                const std::string warn = "trees: " + std::to_string(pointsOrLines) +
-                                         " point or line primitive set(s) are not drawn in this style "
-                                         "(its geometry stage takes triangles)";
-                OSG_WARN << "osgLoA: " << warn << std::endl;
-                report.messages.push_back(warn);
-            }
             const unsigned crowns = TreeSilhouettes::markCrowns(model);
             const std::string line =
                 "trees: " + std::to_string(crowns) + " crown drawable(s) marked" +

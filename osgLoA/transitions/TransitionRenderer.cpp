@@ -319,6 +319,7 @@ TransitionRenderer::TransitionRenderer(LoANode& node) : _node(node)
     // Not a crown unless a drawable says so (TreeSilhouettes::markCrowns): set here, since a
     // program keeps a uniform's last value for drawables that do not set it.
     uniform(*_common, "loa_treeCrown", osg::Uniform::BOOL)->set(false);
+    uniform(*_common, "loa_objectEdgesData", osg::Uniform::BOOL)->set(false);
     uniform(*_common, "loa_baseTexture", osg::Uniform::SAMPLER_2D)->set(0);
     // The fixed-function state the styles reproduce starts from OSG's defaults (with the
     // samplers of texture units 1 and 2); the model's
@@ -531,6 +532,7 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
     for (unsigned c = 0; c < _node.getNumChildren(); ++c)
         FixedFunctionUniforms::annotate(*_node.getChild(c));
     _styles.assign(n, StyleState());
+    _geometryStageMask = 0;
     int visibleMask = 0;
     osg::Uniform* edge = uniform(*_common, "loa_styleEdge", osg::Uniform::FLOAT_VEC4, kN);
     osg::Uniform* unsharp = uniform(*_common, "loa_styleUnsharp", osg::Uniform::FLOAT, kN);
@@ -556,6 +558,7 @@ void TransitionRenderer::bind(const ScenarioEvaluator& evaluator, const FeatureI
         const float lambda = _settings.unsharpMasking ? style->getUnsharpMaskStrength() : 0.0f;
         unsharp->setElement(j, lambda);
         if (lambda > 0.0f) _maxUnsharpSigma = std::max(_maxUnsharpSigma, style->getUnsharpMaskRadius());
+        if (!style->getGeometryShader().empty()) _geometryStageMask |= 1u << j;
         st.fusable = st.visible && st.opaque && !style->getFragmentShader().empty() &&
                      style->getGeometryShader().empty(); // another stage: not in a fused program
         for (unsigned k = 0; k < j; ++k)
@@ -884,7 +887,9 @@ void TransitionRenderer::decide(const ScenarioEvaluator& evaluator)
         }
         else
         {
-            d.depthOnly = _opaqueMaterial[i] != 0;
+            // A style with a geometry stage (leaf sprites) draws other surfaces than the feature's
+            // mesh: the mesh's depth must not hide them.
+            d.depthOnly = _opaqueMaterial[i] != 0 && (visibleMask & _geometryStageMask) == 0;
             _depthAny = _depthAny || d.depthOnly;
             if (d.depthOnly) ++_stats.depthOnlyDraws;
             (_routedToPingPong[i] ? d.pingMask : d.aMask) = visibleMask;
