@@ -20,7 +20,6 @@
 #include <osgLoA/transitions/ScenarioLibrary>
 
 #include <cstring>
-#include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
 #include <osg/ShapeDrawable>
 #include <osgDB/FileUtils>
@@ -563,12 +562,7 @@ TEST(TreeSilhouettesGLTest, AScenarioFileNamesTheNewStyles)
     EXPECT_EQ(back->getConfigurations()[0]->getStyle(), "trees");
     EXPECT_EQ(back->getConfigurations()[1]->getStyle(), "object-edges");
     osg::ref_ptr<osg::Node> city = CityGenerator(CityParameters::small()).generate();
-    osg::ComputeBoundsVisitor cbv;
-    city->accept(cbv);
-    const osg::BoundingBoxd b(cbv.getBoundingBox());
-    const double half = 0.5 * std::max(b.xMax() - b.xMin(), b.yMax() - b.yMin());
-    const osg::BoundingBoxd view(b.center().x() - half * 16.0 / 9.0, b.center().y() - half, b.zMin(),
-                                 b.center().x() + half * 16.0 / 9.0, b.center().y() + half, b.zMax());
+    const osg::BoundingBoxd view = loatest::framedView(city.get(), 640, 360);
     osg::ref_ptr<osg::Image> img =
         loatest::topDown(city.get(), back.get(), 640, 360, Viewport{0, 0, 640, 360}, view);
     osg::ref_ptr<osg::Image> flat =

@@ -362,7 +362,7 @@ TEST(TreeSilhouettesTest, QuadsBecomeTrianglesOfTheSameSurface)
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(g.get());
     unsigned lines = 7;
-    EXPECT_EQ(TreeSilhouettes::triangulate(*geode, &lines), 1u);
+    EXPECT_EQ(GraphicStyle::triangulate(*geode, &lines), 1u);
     EXPECT_EQ(lines, 0u);
     ASSERT_EQ(g->getNumPrimitiveSets(), 1u);
     const osg::PrimitiveSet* ps = g->getPrimitiveSet(0);
@@ -378,7 +378,7 @@ TEST(TreeSilhouettesTest, QuadsBecomeTrianglesOfTheSameSurface)
     }
     EXPECT_NEAR(area, 2.0, 1e-6);
     g->addPrimitiveSet(new osg::DrawArrays(GL_LINES, 0, 2));
-    EXPECT_EQ(TreeSilhouettes::triangulate(*geode, &lines), 0u);
+    EXPECT_EQ(GraphicStyle::triangulate(*geode, &lines), 0u);
     EXPECT_EQ(lines, 1u);
 }
 

@@ -297,14 +297,7 @@ TEST(RouteLineGLTest, TheRouteScenarioDrawsItsRouteAlongTheStreetsOfARealOsmFile
     ASSERT_GE(segments.size(), 1u);
 
     const int w = 1920, h = 1080;
-    osg::ComputeBoundsVisitor cbv;
-    model->accept(cbv);
-    const osg::BoundingBoxd b = cbv.getBoundingBox();
-    const double aspect = double(w) / h;
-    const osg::Vec3d c = b.center();
-    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
-    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
-                                 c.y() + half, b.zMax());
+    const osg::BoundingBoxd view = loatest::framedView(model.get(), w, h);
     const loatest::Viewport vp{0, 0, w, h};
     osg::ref_ptr<osg::Image> plain = loatest::topDown(model.get(), noLine.get(), w, h, vp, view);
     osg::ref_ptr<osg::Image> line = loatest::topDown(model.get(), route.get(), w, h, vp, view);

@@ -325,15 +325,8 @@ TEST(StreetLabelsGLTest, WestOaklandLabelsLieOnItsStreets)
     if (!osgDB::fileExists(file)) GTEST_SKIP() << file << " is absent: run scripts/fetch-test-data";
     osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(file);
     ASSERT_TRUE(model.valid());
-    osg::ComputeBoundsVisitor cbv;
-    model->accept(cbv);
-    const osg::BoundingBoxd b(cbv.getBoundingBox());
     const int w = 1920, h = 1080;
-    const double aspect = double(w) / h;
-    const osg::Vec3d c = b.center();
-    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
-    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
-                                 c.y() + half, b.zMax());
+    const osg::BoundingBoxd view = loatest::framedView(model.get(), w, h);
     const loatest::Viewport vp{0, 0, w, h};
     osg::ref_ptr<osg::Image> labelled = loatest::topDown(model.get(), "streets", w, h, vp, view);
     osg::ref_ptr<osg::Image> mask =

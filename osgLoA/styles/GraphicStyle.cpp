@@ -1,6 +1,12 @@
 // GraphicStyle: a style's shader, parameters and compositor hints; the built-in styles.
 #include <osgLoA/styles/GraphicStyle>
 
+#include "../util/TriangleCollector.h"
+
+#include <osg/Geometry>
+#include <osg/NodeVisitor>
+#include <osg/TriangleIndexFunctor>
+
 #include <osgLoA/render/ShaderLibrary>
 
 #include <algorithm>
@@ -279,6 +285,45 @@ osg::ref_ptr<osg::Program> GraphicStyle::createProgram(const std::vector<std::st
 void GraphicStyle::applyParameters(osg::StateSet& target) const
 {
     if (_parameters.valid()) target.merge(*_parameters);
+}
+
+namespace
+{
+class Triangulator : public osg::NodeVisitor
+{
+public:
+    Triangulator() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+    unsigned converted = 0, pointsOrLines = 0;
+    void apply(osg::Geometry& g) override
+    {
+        for (unsigned i = 0; i < g.getNumPrimitiveSets(); ++i)
+        {
+            osg::PrimitiveSet* ps = g.getPrimitiveSet(i);
+            const GLenum mode = ps->getMode();
+            if (mode == GL_POINTS || mode == GL_LINES || mode == GL_LINE_STRIP || mode == GL_LINE_LOOP)
+                ++pointsOrLines;
+            if (mode != GL_QUADS && mode != GL_QUAD_STRIP && mode != GL_POLYGON) continue;
+            std::vector<unsigned> indices;
+            osg::TriangleIndexFunctor<TriangleIndexList> f;
+            f.out = &indices;
+            ps->accept(f);
+            osg::ref_ptr<osg::DrawElementsUInt> tris =
+                new osg::DrawElementsUInt(GL_TRIANGLES, indices.begin(), indices.end());
+            tris->setNumInstances(ps->getNumInstances());
+            g.setPrimitiveSet(i, tris.get());
+            ++converted;
+        }
+        if (g.getUseDisplayList()) g.dirtyGLObjects();
+    }
+};
+} // namespace
+
+unsigned GraphicStyle::triangulate(osg::Node& model, unsigned* pointsOrLines)
+{
+    Triangulator t;
+    model.accept(t);
+    if (pointsOrLines) *pointsOrLines = t.pointsOrLines;
+    return t.converted;
 }
 
 } // namespace osgLoA

@@ -236,8 +236,13 @@ const SignedDistanceFont::Glyph* SignedDistanceFont::glyph(unsigned code) const
 
 float SignedDistanceFont::kerning(unsigned left, unsigned right) const
 {
+    const auto key = std::make_pair(left, right);
+    const auto found = _kerning.find(key);
+    if (found != _kerning.end()) return found->second;
     const osgText::FontResolution res(unsigned(_parameters.renderPixels), unsigned(_parameters.renderPixels));
-    return _font->getKerning(res, left, right, osgText::KERNING_DEFAULT).x();
+    const float k = _font->getKerning(res, left, right, osgText::KERNING_DEFAULT).x();
+    _kerning.emplace(key, k);
+    return k;
 }
 
 } // namespace osgLoA

@@ -643,7 +643,6 @@ StreetLabels::~StreetLabels() = default;
 void StreetLabels::draw(osgUtil::CullVisitor& cv, const std::vector<Label>& labels, const Parameters& p,
                         const View& view, osg::Texture2D* frontDepth, float zNear, float zFar, bool ortho)
 {
-    _lastLabels = labels;
     if (labels.empty()) return;
     const unsigned b = _frame++ % 2;
     osg::Geometry& g = *_geometries[b];

@@ -111,7 +111,7 @@ StylePreparation::Report StylePreparation::prepare(osg::Node& model, const Usage
     auto triangulate = [&](const std::string& style)
     {
         unsigned pointsOrLines = 0;
-        const unsigned converted = TreeSilhouettes::triangulate(model, &pointsOrLines);
+        const unsigned converted = GraphicStyle::triangulate(model, &pointsOrLines);
         if (pointsOrLines)
         {
             const std::string warn = style + ": " + std::to_string(pointsOrLines) +

@@ -106,13 +106,14 @@ inline osg::ref_ptr<osg::Image> topDown(osg::Node* model, osgLoA::UsageScenario*
                                         int height, const Viewport& vp, const osg::BoundingBoxd& view)
 {
     const double top = view.zMax() + 500.0;
-    return throughLoA(model, scenario, width, height, vp,
-                      [&](osgLoA::OffscreenRenderer& r)
-                      {
-                          r.getCamera()->setProjectionMatrixAsOrtho(view.xMin(), view.xMax(), view.yMin(),
-                                                                    view.yMax(), 1.0, top - view.zMin() + 10.0);
-                          r.setViewMatrixAsLookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
-                      });
+    return throughLoA(
+        model, scenario, width, height, vp,
+        [&](osgLoA::OffscreenRenderer& r)
+        {
+            r.getCamera()->setProjectionMatrixAsOrtho(view.xMin(), view.xMax(), view.yMin(), view.yMax(), 1.0,
+                                                      top - view.zMin() + 10.0);
+            r.setViewMatrixAsLookAt(osg::Vec3d(0, 0, top), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 1, 0));
+        });
 }
 
 /** The same, through a scenario that draws everything in `style`. */
@@ -146,6 +147,27 @@ inline std::string typeMaskStyle(osgLoA::FeatureType type)
     return name;
 }
 
+/** The view box that frames a model's bounds (or `bounds`) whole in a width x height frame seen
+ *  from above, centred, square pixels: for topDown. */
+inline osg::BoundingBoxd framedView(osg::Node* model, int width, int height,
+                                    const osg::BoundingBoxd* bounds = nullptr)
+{
+    osg::BoundingBoxd b;
+    if (bounds)
+        b = *bounds;
+    else
+    {
+        osg::ComputeBoundsVisitor cbv;
+        model->accept(cbv);
+        b = osg::BoundingBoxd(cbv.getBoundingBox());
+    }
+    const double aspect = double(width) / height;
+    const osg::Vec3d c = b.center();
+    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
+    return osg::BoundingBoxd(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
+                             c.y() + half, b.zMax());
+}
+
 /** Pixels of a style's top-down frame that differ from another style's, inside and outside the
  *  magenta of a mask style (a style drawing the features concerned pure magenta; grown by 2 px,
  *  darkened magenta where edges lie on it counts): the model (or the frame given) framed whole,
@@ -161,14 +183,7 @@ inline MaskedDifference differenceInMask(osg::Node* model, const std::string& st
                                          int width, int height, const std::string& folder,
                                          const std::string& name, const osg::BoundingBoxd* frame = nullptr)
 {
-    osg::ComputeBoundsVisitor cbv;
-    model->accept(cbv);
-    const osg::BoundingBoxd b = frame ? *frame : osg::BoundingBoxd(cbv.getBoundingBox());
-    const double aspect = double(width) / height;
-    const osg::Vec3d c = b.center();
-    const double half = 0.5 * std::max((b.xMax() - b.xMin()) / aspect, double(b.yMax() - b.yMin()));
-    const osg::BoundingBoxd view(c.x() - half * aspect, c.y() - half, b.zMin(), c.x() + half * aspect,
-                                 c.y() + half, b.zMax());
+    const osg::BoundingBoxd view = framedView(model, width, height, frame);
     const Viewport vp{0, 0, width, height};
     osg::ref_ptr<osg::Image> styled = topDown(model, style, width, height, vp, view);
     osg::ref_ptr<osg::Image> flat = topDown(model, reference, width, height, vp, view);
