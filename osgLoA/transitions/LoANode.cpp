@@ -1,4 +1,5 @@
 // LoANode: binds and evaluates a usage scenario during cull.
+#include <osgLoA/authoring/HomeView>
 #include <osgLoA/transitions/LoANode>
 #include <osgLoA/transitions/RouteLine>
 
@@ -7,9 +8,12 @@
 #include <osg/Notify>
 
 #include <algorithm>
+#include <osgGA/EventVisitor>
 #include <osgLoA/util/StateSetVisitor>
 #include <osgUtil/CullVisitor>
 #include <osgUtil/GLObjectsVisitor>
+#include <osgViewer/View>
+#include <sstream>
 
 namespace osgLoA
 {
@@ -89,6 +93,100 @@ bool LoANode::needsBind() const
                                  _boundRevision != _scenario->getRevision());
 }
 
+bool LoANode::needsRefit() const
+{
+    return _scenario.valid() && _boundScenario == _scenario.get() &&
+           _boundValuesRevision != _scenario->getValuesRevision();
+}
+
+void LoANode::bindOrRefit()
+{
+    try
+    {
+        if (needsBind())
+            bind();
+        else if (needsRefit())
+            refit();
+    }
+    catch (const std::exception& e)
+    {
+        OSG_WARN << "osgLoA::LoANode: " << e.what() << "; drawing the model unstyled" << std::endl;
+    }
+}
+
+void LoANode::refit()
+{
+    _boundValuesRevision = _scenario->getValuesRevision();
+    if (!_evaluator->isBound())
+    {
+        bind();
+        return;
+    }
+    // The matches (feature, configuration) the renderer's passes were built for.
+    std::vector<unsigned> before;
+    before.reserve(_evaluator->matches().size() + _evaluator->features().size());
+    for (const auto& f : _evaluator->features())
+    {
+        before.push_back(f.numMatches);
+        for (unsigned k = 0; k < f.numMatches; ++k)
+            before.push_back(_evaluator->matchesOf(f)[k].configuration);
+    }
+    try
+    {
+        _evaluator->bind(_scenario.get(), _index);
+    }
+    catch (const std::exception& e)
+    {
+        _bindError = e.what();
+        _evaluator = new ScenarioEvaluator;
+        _renderer->unbind();
+        throw;
+    }
+    std::vector<unsigned> after;
+    after.reserve(before.size());
+    for (const auto& f : _evaluator->features())
+    {
+        after.push_back(f.numMatches);
+        for (unsigned k = 0; k < f.numMatches; ++k)
+            after.push_back(_evaluator->matchesOf(f)[k].configuration);
+    }
+    if (after != before)
+    {
+        OSG_INFO << "osgLoA::LoANode: the edit changed which configurations match; binding again"
+                 << std::endl;
+        bind();
+        return;
+    }
+    ++_refits;
+    osg::StateSet* ss = getOrCreateStateSet();
+    TransitionUniforms::applyScenario(*ss, *_evaluator);
+    if (distanceFieldInputs() != _distanceFieldInputs) setUpDistanceField();
+    RouteLine::apply(*ss, RouteLine::collect(_evaluator->getScenario()->getRegions()));
+    _renderer->rebindValues(*_evaluator);
+}
+
+std::string LoANode::distanceFieldInputs() const
+{
+    std::ostringstream out;
+    out.precision(17);
+    if (!_evaluator->isBound()) return std::string();
+    for (const auto& c : _evaluator->getScenario()->getConfigurations())
+    {
+        const SaliencyMetric* m = c->getMetric(SaliencyMetric::REGION);
+        if (!m || c->getInterpolation() != TransitionConfiguration::FRAGMENT) continue;
+        out << "ramp " << m->getNear() << " " << m->getFar() << "\n";
+    }
+    for (const auto& r : _evaluator->getScenario()->getRegions())
+    {
+        if (!r.valid()) continue;
+        out << "region " << int(r->getShape()) << " " << r->getRadius();
+        for (const osg::Vec2d& v : r->getVertices())
+            out << " " << v.x() << "," << v.y();
+        out << "\n";
+    }
+    return out.str();
+}
+
 void LoANode::bind()
 {
     // bind() visits this node (FeatureIndex::build); its generic-visitor branch must not bind again.
@@ -101,7 +199,9 @@ void LoANode::bind()
     _childrenChanged = false;
     _boundScenario = _scenario.get();
     _boundRevision = _scenario.valid() ? _scenario->getRevision() : ~0u;
+    _boundValuesRevision = _scenario.valid() ? _scenario->getValuesRevision() : ~0u;
     _bindError.clear();
+    ++_binds;
     // The index's root is this node: bounds come out in its local coordinates.
     _index = FeatureIndex();
     _index.build(*this);
@@ -144,6 +244,7 @@ void LoANode::bind()
 
 void LoANode::setUpDistanceField()
 {
+    _distanceFieldInputs = distanceFieldInputs();
     double texel = 0.0, maxDistance = 0.0;
     for (const auto& c : _evaluator->getScenario()->getConfigurations())
     {
@@ -192,7 +293,10 @@ void LoANode::followEye()
 void LoANode::evaluate(const osg::Vec3d& eye)
 {
     std::lock_guard<std::mutex> lock(_mutex);
-    if (needsBind()) bind();
+    if (needsBind())
+        bind();
+    else if (needsRefit())
+        refit();
     if (_evaluator->isBound())
     {
         _evaluator->evaluate(eye);
@@ -200,8 +304,32 @@ void LoANode::evaluate(const osg::Vec3d& eye)
     }
 }
 
+void LoANode::setHomeViewPending(bool pending)
+{
+    if (pending == _homeViewPending) return;
+    _homeViewPending = pending;
+    setNumChildrenRequiringEventTraversal(getNumChildrenRequiringEventTraversal() + (pending ? 1 : -1));
+}
+
 void LoANode::traverse(osg::NodeVisitor& nv)
 {
+    if (_homeViewPending && nv.getVisitorType() == osg::NodeVisitor::EVENT_VISITOR)
+    {
+        osgGA::EventVisitor* ev = dynamic_cast<osgGA::EventVisitor*>(&nv);
+        osgViewer::View* view = ev ? dynamic_cast<osgViewer::View*>(ev->getActionAdapter()) : nullptr;
+        if (view && view->getCameraManipulator())
+        {
+            try
+            {
+                HomeView::apply(*view->getCameraManipulator(), HomeView::compute(*this, view->getCamera()));
+            }
+            catch (const std::exception& e)
+            {
+                OSG_WARN << "osgLoA::LoANode: no home view: " << e.what() << std::endl;
+            }
+            setHomeViewPending(false);
+        }
+    }
     osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR
                                    ? dynamic_cast<osgUtil::CullVisitor*>(&nv)
                                    : nullptr;
@@ -211,17 +339,7 @@ void LoANode::traverse(osg::NodeVisitor& nv)
     if ((update || cv) && _scenario.valid())
     {
         std::lock_guard<std::mutex> lock(_mutex);
-        if (needsBind())
-        {
-            try
-            {
-                bind();
-            }
-            catch (const std::exception& e)
-            {
-                OSG_WARN << "osgLoA::LoANode: " << e.what() << "; drawing the model unstyled" << std::endl;
-            }
-        }
+        bindOrRefit();
         if (cv && _evaluator->isBound())
         {
             const auto& features = _evaluator->features();
@@ -265,18 +383,7 @@ void LoANode::traverse(osg::NodeVisitor& nv)
     {
         {
             std::lock_guard<std::mutex> lock(_mutex);
-            if (needsBind())
-            {
-                try
-                {
-                    bind();
-                }
-                catch (const std::exception& e)
-                {
-                    OSG_WARN << "osgLoA::LoANode: " << e.what() << "; drawing the model unstyled"
-                             << std::endl;
-                }
-            }
+            bindOrRefit();
         }
         if (_renderer->isBound()) _renderer->getInternalNode()->accept(nv);
     }

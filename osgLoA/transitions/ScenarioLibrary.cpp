@@ -195,6 +195,13 @@ std::vector<std::string> ScenarioLibrary::builtinNames()
             "circular-roi", "blueprint", "landscape",  "navigation"};
 }
 
+void ScenarioLibrary::appendTwoLevels(UsageScenario& scenario, const SaliencyMetric& metric,
+                                      const std::string& highStyle, const std::string& lowStyle)
+{
+    osg::ref_ptr<SaliencyMetric> m = osg::clone(&metric, osg::CopyOp::DEEP_COPY_ALL);
+    addTwoLevels(scenario, {m}, highStyle, lowStyle, 0.0f, 1.0f);
+}
+
 osg::ref_ptr<UsageScenario> ScenarioLibrary::createHomogeneous(const std::string& style)
 {
     osg::ref_ptr<UsageScenario> s = new UsageScenario;

@@ -813,6 +813,20 @@ void TransitionRenderer::removeCallbacks()
     _callbacks.clear();
 }
 
+void TransitionRenderer::rebindValues(const ScenarioEvaluator& evaluator)
+{
+    if (!_bound || !evaluator.getScenario()) return;
+    LandmarkDeformation::applyScenario(*_common, evaluator.getScenario()->getLandmarkDeformation());
+}
+
+std::vector<osg::Program*> TransitionRenderer::getPrograms() const
+{
+    std::vector<osg::Program*> out;
+    for (const auto& p : _programs)
+        out.push_back(p.second.get());
+    return out;
+}
+
 void TransitionRenderer::unbind()
 {
     removeCallbacks();

@@ -30,6 +30,21 @@ UsageScenario::UsageScenario(const UsageScenario& other, const osg::CopyOp& copy
         _regions.push_back(r.valid() ? static_cast<RegionOfInterest*>(copyop(r.get())) : nullptr);
 }
 
+void UsageScenario::assign(const UsageScenario& other)
+{
+    if (&other == this) return;
+    osg::ref_ptr<UsageScenario> copy = new UsageScenario(other, osg::CopyOp::DEEP_COPY_ALL);
+    setName(copy->getName());
+    _description = copy->_description;
+    _interest = copy->_interest;
+    _configurations = copy->_configurations;
+    _regions = copy->_regions;
+    _focusFeature = copy->_focusFeature;
+    _focusTallestLandmark = copy->_focusTallestLandmark;
+    _landmarkDeformation = copy->_landmarkDeformation;
+    _colorScheme = copy->_colorScheme;
+}
+
 TransitionConfiguration* UsageScenario::addConfiguration(TransitionConfiguration* c)
 {
     _configurations.push_back(c);

@@ -588,6 +588,9 @@ private:
                          << std::endl;
         }
         loa->setScenario(scenario.get());
+        // The stock osgviewer frames a city edge-on from its bounding sphere; the node gives
+        // the viewer's manipulator the oblique home view of loa-viewer in its first event.
+        loa->setHomeViewPending(true);
         if (!opts.oit.empty())
         {
             osgLoA::TransitionRenderer::Settings rs = loa->getRenderer()->getSettings();
