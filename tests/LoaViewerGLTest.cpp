@@ -3,7 +3,16 @@
 // xvfb-run (an X server in memory; Mesa renders with llvmpipe), three frames each.
 #include "support/TestSupport.h"
 
+#include <osgLoA/city/CityCameras>
+#include <osgLoA/city/CityGenerator>
 #include <osgLoA/transitions/ScenarioLibrary>
+#include <osgLoA/util/ImageCompare>
+#include <osgLoA/util/ImageFile>
+
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -60,8 +69,8 @@ void view(const std::string& what, const std::string& optionString, const std::s
     for (int attempt = 0; attempt < 2; ++attempt)
     {
         const unsigned display = 100 + (static_cast<unsigned>(::getpid()) * 37u + runs++ * 11u) % 800u;
-        command = "xvfb-run -n " + std::to_string(display) + " -a" +
-                  " -s '-screen 0 640x480x24' env " + loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
+        command = "xvfb-run -n " + std::to_string(display) + " -a" + " -s '-screen 0 640x480x24' env " +
+                  loatest::stockToolEnvironment() + "OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) +
                   "/lib' OSG_RUN_FRAME_COUNT=3 OSG_NOTIFY_LEVEL=WARN osgviewer --window 0 0 320 240" +
                   (optionString.empty() ? std::string() : " -O '" + optionString + "'") + " '" + file + "'";
         rc = loatest::run(command, output);
@@ -103,4 +112,147 @@ TEST(LoaViewerGLTest, DemoLoaFile)
 {
     skipWithoutViewer();
     view("data/demo.loa", "", std::string(LOA_SOURCE_DIR) + "/data/demo.loa");
+}
+
+// loa-viewer under Xvfb (issue 20): a script of osgGA events authors the circle-of-interest
+// scenario by mouse, saves it, and the viewer's frame equals loa-render's frame of the saved file.
+namespace
+{
+struct ViewerRun
+{
+    int rc = 0;
+    std::string output, command;
+};
+
+/** Runs loa-viewer with a script in an Xvfb screen of the window's size. */
+ViewerRun runViewer(const std::string& script, const std::string& arguments, int width, int height)
+{
+    const std::string dir =
+        loatest::freshDirectory("loa-viewer-" + std::to_string(width) + "x" + std::to_string(height));
+    {
+        std::ofstream out(dir + "/script.txt");
+        out << script;
+    }
+    ViewerRun r;
+    static unsigned runs = 0;
+    for (int attempt = 0; attempt < 2; ++attempt)
+    {
+        const unsigned display = 100 + (static_cast<unsigned>(::getpid()) * 41u + runs++ * 13u) % 800u;
+        r.command = "cd '" + dir + "' && xvfb-run -n " + std::to_string(display) + " -a -s '-screen 0 " +
+                    std::to_string(width) + "x" + std::to_string(height) + "x24' env OSG_LIBRARY_PATH='" +
+                    std::string(LOA_BINARY_DIR) + "/lib' OSG_NOTIFY_LEVEL=WARN '" + LOA_VIEWER_EXE +
+                    "' --size " + std::to_string(width) + "x" + std::to_string(height) +
+                    " --script script.txt " + arguments;
+        r.rc = loatest::run(r.command, r.output);
+        if (r.output.find("Unable to open display") == std::string::npos) break;
+    }
+    return r;
+}
+
+osg::ref_ptr<osg::Image> renderSaved(const std::string& dir, const std::string& arguments, int width,
+                                     int height)
+{
+    std::string out;
+    const std::string png = dir + "/loa-render.png";
+    const std::string command = "'" + std::string(LOA_RENDER_TOOL) + "' --size " + std::to_string(width) +
+                                "x" + std::to_string(height) + " --out '" + png + "' " + arguments + " 2>&1";
+    EXPECT_EQ(loatest::run(command, out), 0) << command << "\n" << out;
+    return osgDB::fileExists(png) ? osgLoA::ImageFile::read(png) : nullptr;
+}
+
+void skipWithoutXvfb()
+{
+    if (!have("xvfb-run")) GTEST_SKIP() << "xvfb-run not installed (Debian packages xvfb, xauth)";
+}
+
+/** The viewer's frame against loa-render's of the same scenario, camera and size. */
+void expectSameFrame(const std::string& dir, const std::string& viewerShot,
+                     const std::string& renderArguments, int width, int height)
+{
+    osg::ref_ptr<osg::Image> viewer = osgLoA::ImageFile::read(dir + "/" + viewerShot);
+    osg::ref_ptr<osg::Image> reference = renderSaved(dir, renderArguments, width, height);
+    ASSERT_TRUE(viewer.valid() && reference.valid());
+    // The same pipeline, light, field of view and sky: equal up to llvmpipe's rounding.
+    const osgLoA::ImageComparison cmp = osgLoA::ImageComparison::compare(*viewer, *reference, 16);
+    EXPECT_TRUE(cmp.sizesMatch);
+    EXPECT_LE(cmp.meanDifference, 0.5) << cmp.summary();
+    EXPECT_LE(cmp.failingFraction, 0.001) << cmp.summary();
+}
+} // namespace
+
+TEST(LoaViewerGLTest, CircleOfInterestAuthoredByMouseAt1920x1080)
+{
+    skipWithoutXvfb();
+    // Region mode (r), a circle dragged from the window's centre 180 px to the right, the circle
+    // scenario (R: detail inside, abstract outside), its fade dragged with the right button,
+    // panels hidden (Tab), a screenshot, Ctrl+S.
+    const std::string script = "key r\ndrag 960 540 1140 540 steps 2\nkey R\n"
+                               "drag 960 540 1260 540 right steps 2\nkey tab\nscreenshot viewer.png\n"
+                               "key s ctrl\nquit\n";
+    const std::string city = "-O 'seed=2 blocksX=4 blocksY=4' --camera top";
+    const ViewerRun run = runViewer(script, city + " --save circle.osgt", 1920, 1080);
+    ASSERT_EQ(run.rc, 0) << run.command << "\n" << run.output;
+    EXPECT_NE(run.output.find("edit 1: place circle 'circle-1'"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("edit 3: region fade"), std::string::npos) << run.output;
+    const std::string dir = std::string(LOA_BINARY_DIR) + "/test-output/loa-viewer-1920x1080";
+    osg::ref_ptr<osgLoA::UsageScenario> saved = osgLoA::ScenarioLibrary::readFile(dir + "/circle.osgt");
+    ASSERT_EQ(saved->getRegions().size(), 1u);
+    ASSERT_EQ(saved->getConfigurations().size(), 4u);
+    // The top view looks straight down at the city's centre: the window's centre pixel is the
+    // point under the eye, and 180 px at 1080 px over 45 degrees spans 2 (180/1080) tan(22.5)
+    // times the eye's height above the picked surface.
+    osgLoA::CityParameters p;
+    p.seed = 2;
+    p.blocksX = 4;
+    p.blocksY = 4;
+    osg::ref_ptr<osg::Group> model = osgLoA::CityGenerator(p).generate();
+    const osgLoA::CameraPose top = osgLoA::CityCameras::compute("top", *model, 1920.0 / 1080.0);
+    const osg::Vec2d centre = saved->getRegions()[0]->getVertices()[0];
+    // The script's pixel (960, 540) has its centre half a pixel right of and below the
+    // window's centre: within one pixel's ground size there.
+    const double pixel = 2.0 * std::tan(osg::DegreesToRadians(22.5)) * top.eye.z() / 1080.0;
+    EXPECT_NEAR(centre.x(), top.eye.x(), pixel);
+    EXPECT_NEAR(centre.y(), top.eye.y(), pixel);
+    const double radius = saved->getRegions()[0]->getRadius();
+    const double perMetre = 2.0 * 180.0 / 1080.0 * std::tan(osg::DegreesToRadians(22.5));
+    EXPECT_GT(radius, perMetre * (top.eye.z() - 40.0)); // the surface lies below 40 m there
+    EXPECT_LT(radius, perMetre * (top.eye.z() + 1.0));
+    for (const auto& c : saved->getConfigurations())
+    {
+        ASSERT_TRUE(c->getMetric(osgLoA::SaliencyMetric::REGION));
+        // The right drag ended 300 px from the centre, the circle's edge is at 180 px: the fade
+        // is 120/180 of the radius (the same height there, within 10 %).
+        EXPECT_NEAR(c->getMetric(osgLoA::SaliencyMetric::REGION)->getFar(), radius * 2.0 / 3.0, radius * 0.1);
+    }
+    expectSameFrame(dir, "viewer.png", city + " --scenario '" + dir + "/circle.osgt'", 1920, 1080);
+}
+
+TEST(LoaViewerGLTest, PanelsAndAuthoringOnARealSceneAtAnOddSize)
+{
+    skipWithoutXvfb();
+    const std::string scene = std::string(LOA_SOURCE_DIR) + "/data/test-scenes/opencity-block.osgt";
+    if (!osgDB::fileExists(std::string(LOA_SOURCE_DIR) + "/data/cache/opencity-data/pine2/pine2.ac"))
+        GTEST_SKIP() << "the OpenCity models are absent: run scripts/fetch-test-data";
+    // The OpenCity block from its home view at 961x541: a circle dragged by mouse, the circle
+    // scenario, a screenshot with the panels (against a golden), one without (against
+    // loa-render's frame of the saved scenario from the same viewpoint).
+    const std::string script = "key r\ndrag 480 330 560 330 steps 2\nkey R\nscreenshot panels.png\n"
+                               "key tab\nscreenshot viewer.png\nkey s ctrl\nquit\n";
+    const ViewerRun run = runViewer(script, "'" + scene + "' --camera oblique --save circle.osgb", 961, 541);
+    ASSERT_EQ(run.rc, 0) << run.command << "\n" << run.output;
+    const std::string dir = std::string(LOA_BINARY_DIR) + "/test-output/loa-viewer-961x541";
+    osg::ref_ptr<osgLoA::UsageScenario> saved = osgLoA::ScenarioLibrary::readFile(dir + "/circle.osgb");
+    ASSERT_EQ(saved->getRegions().size(), 1u);
+    EXPECT_GT(saved->getRegions()[0]->getRadius(), 1.0);
+    expectSameFrame(dir, "viewer.png",
+                    "'" + scene + "' --camera oblique --scenario '" + dir + "/circle.osgb'", 961, 541);
+    osg::ref_ptr<osg::Image> panels = osgLoA::ImageFile::read(dir + "/panels.png");
+    ASSERT_TRUE(panels.valid());
+    osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate("viewer-panels-opencity-961x541.png", *panels);
+    if (!golden) GTEST_SKIP() << "golden updated";
+    const osgLoA::ImageComparison cmp = osgLoA::ImageComparison::compare(*panels, *golden, 16);
+    EXPECT_TRUE(cmp.sizesMatch);
+    EXPECT_LE(cmp.failingFraction, 0.005) << cmp.summary();
+    if (cmp.failingFraction > 0.005)
+        loatest::saveFailure("viewer-panels-opencity-961x541", *panels, cmp.difference.get());
 }

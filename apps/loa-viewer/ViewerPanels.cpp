@@ -7,6 +7,8 @@
 
 #include <imgui.h>
 
+#include <osgDB/FileNameUtils>
+
 #include <algorithm>
 #include <cstring>
 #include <sstream>
@@ -140,20 +142,28 @@ void ViewerPanels::build()
 {
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     const float w = size.x;
+    // In a small window the editors on the right start collapsed (a click on a title opens
+    // one), so that the scene stays in view.
+    const bool compact = size.x < 1400.0f || size.y < 800.0f;
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(330, 230), ImGuiCond_FirstUseEver);
     tools();
     ImGui::SetNextWindowPos(ImVec2(8, 246), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 300), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(330, compact ? std::min(300.0f, size.y - 254.0f) : 300.0f),
+                             ImGuiCond_FirstUseEver);
     library();
     ImGui::SetNextWindowPos(ImVec2(w - 378, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(370, 420), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowCollapsed(compact, ImGuiCond_FirstUseEver);
     configuration();
-    ImGui::SetNextWindowPos(ImVec2(w - 378, 436), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(w - 378, compact ? 34.0f : 436.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(370, 260), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowCollapsed(compact, ImGuiCond_FirstUseEver);
     style();
-    ImGui::SetNextWindowPos(ImVec2(8, 554), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(compact ? w - 378 : 8.0f, compact ? 60.0f : 554.0f),
+                            ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(330, 150), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowCollapsed(compact, ImGuiCond_FirstUseEver);
     feature();
 }
 
@@ -212,7 +222,11 @@ void ViewerPanels::library()
     osgLoA::ScenarioEditor& e = s.getEditor();
     const osgLoA::UsageScenario& sc = e.getScenario();
     ImGui::Text("%s%s", sc.getName().c_str(), e.isModified() ? " (modified)" : "");
-    ImGui::TextDisabled("from %s", s.origin.c_str());
+    // The file's name and folder only: the panel reads the same on every machine.
+    const std::string folder = osgDB::getSimpleFileName(osgDB::getFilePath(s.origin));
+    ImGui::TextDisabled("from %s", osgDB::getFilePath(s.origin).empty()
+                                       ? s.origin.c_str()
+                                       : (folder + "/" + osgDB::getSimpleFileName(s.origin)).c_str());
     const std::vector<std::string> names = s.libraryNames();
     ImGui::SetNextItemWidth(-1);
     if (ImGui::BeginListBox("##library", ImVec2(-1, 90)))

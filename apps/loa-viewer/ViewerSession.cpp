@@ -313,8 +313,27 @@ bool ViewerSession::release(const osg::Camera& camera, double x, double y)
     const osgLoA::FeaturePicker::Hit hit = pick(camera, x, y);
     if (mode == ROUTE)
     {
-        if (button == 1 && _routeVertex < 0 && hit.ground)
-            attempt([&] { _editor->addRoutePoint("route", osg::Vec2d(hit.scene.x(), hit.scene.y())); });
+        const osg::Vec2d p(hit.scene.x(), hit.scene.y());
+        bool haveRoute = false;
+        for (const auto& r : _editor->getScenario().getRegions())
+            haveRoute = haveRoute || (r.valid() && r->getName() == "route");
+        if (button == 1 && _routeVertex < 0 && hit.ground && !haveRoute && !_routeStarted)
+        {
+            // A route needs two points to be valid: the first waits for the second.
+            _routeStarted = true;
+            _routeStart = p;
+            say("route: click the next point");
+        }
+        else if (button == 1 && _routeVertex < 0 && hit.ground)
+            attempt(
+                [&]
+                {
+                    if (haveRoute)
+                        _editor->addRoutePoint("route", p);
+                    else
+                        _editor->startRoute("route", _routeStart, p);
+                    _routeStarted = false;
+                });
         else if (button == 3 && _routeVertex >= 0)
             attempt([&] { _editor->removeRoutePoint("route", unsigned(_routeVertex)); });
         return true;

@@ -139,7 +139,9 @@ private:
     osg::Vec2d _pressGround; ///< where the button went down (scene x, y)
     osg::Vec2d _grabOffset;  ///< circle centre - press point, when moving a circle
     bool _moving = false;
-    int _routeVertex = -1; ///< the route point being dragged
+    int _routeVertex = -1;      ///< the route point being dragged
+    bool _routeStarted = false; ///< a first route point waits for the second (a route needs two)
+    osg::Vec2d _routeStart;
 };
 
 } // namespace loa

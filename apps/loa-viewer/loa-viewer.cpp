@@ -8,6 +8,7 @@
 #include "ViewerSession.h"
 
 #include <osgLoA/authoring/HomeView>
+#include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/render/ShaderLibrary>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/transitions/ScenarioLibrary>
@@ -105,11 +106,17 @@ int run(const Options& o)
 
     osgViewer::Viewer viewer;
     viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded); // panels edit the scene between frames
-    viewer.setUpViewInWindow(40, 40, o.width, o.height);
+    viewer.setUpViewInWindow(0, 0, o.width, o.height);
     viewer.setSceneData(session.getRoot());
     viewer.realize();
     if (!viewer.isRealized()) throw std::runtime_error("no window could be opened (is DISPLAY set?)");
 
+    // The field of view of CityCameras and loa-render (45 degrees; osgViewer's default is 30),
+    // so that a viewpoint frames what the tools' camera of the same name frames.
+    osgLoA::OffscreenRenderer::setUpSun(viewer);
+    viewer.getCamera()->setClearColor(osgLoA::OffscreenRenderer::skyColor());
+    viewer.getCamera()->setProjectionMatrixAsPerspective(45.0, double(o.width) / double(o.height), 1.0,
+                                                         10000.0);
     osg::ref_ptr<loa::GuardedManipulator> manipulator = new loa::GuardedManipulator;
     manipulator->addMatrixManipulator('1', "Trackball", new osgGA::TrackballManipulator);
     manipulator->addMatrixManipulator('2', "Flight", new osgGA::FlightManipulator);

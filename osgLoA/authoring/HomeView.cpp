@@ -1,10 +1,44 @@
 // HomeView: an oblique home view of a city model for interactive viewers.
 #include <osgLoA/authoring/HomeView>
+#include <osgLoA/semantics/FeatureIndex>
 
+#include <osg/ComputeBoundsVisitor>
+
+#include <algorithm>
 #include <cmath>
 
 namespace osgLoA
 {
+
+namespace
+{
+// The frame keeps this share of the view's half-extent free around the model.
+constexpr double kHomeMargin = 0.92;
+
+/** What the home view frames: the top-level features but the terrain (a DEM or a ground plane
+ *  reaches far beyond the city), else every feature, else the scene's geometry. */
+osg::BoundingBoxd framedBox(osg::Node& scene)
+{
+    FeatureIndex index(scene);
+    index.updateBounds();
+    osg::BoundingBoxd features, all;
+    for (const FeatureIndex::Entry& e : index.entries())
+    {
+        const osg::BoundingBoxf& b = e.feature->getBound();
+        if (e.parent >= 0 || !b.valid()) continue;
+        const osg::BoundingBoxd box(osg::Vec3d(b._min), osg::Vec3d(b._max));
+        all.expandBy(box);
+        if (e.feature->getType() != FeatureType::Terrain) features.expandBy(box);
+    }
+    if (features.valid()) return features;
+    if (all.valid()) return all;
+    osg::ComputeBoundsVisitor cbv;
+    scene.accept(cbv);
+    const osg::BoundingBox& b = cbv.getBoundingBox();
+    if (!b.valid()) throw std::invalid_argument("the scene is empty: no home view");
+    return osg::BoundingBoxd(osg::Vec3d(b._min), osg::Vec3d(b._max));
+}
+} // namespace
 
 CameraPose HomeView::compute(osg::Node& scene, const osg::Camera* camera)
 {
@@ -20,12 +54,29 @@ CameraPose HomeView::compute(osg::Node& scene, const osg::Camera* camera)
         else if (const osg::Viewport* vp = camera->getViewport())
             if (vp->width() > 0 && vp->height() > 0) aspect = vp->width() / vp->height();
     }
-    CameraPose pose = CityCameras::compute("oblique", scene, aspect);
-    // CityCameras frames the model for its own field of view: keep the direction, scale the
-    // distance so the same extent fits this camera's.
-    const double scale =
-        std::tan(osg::DegreesToRadians(pose.fovy) * 0.5) / std::tan(osg::DegreesToRadians(fovy) * 0.5);
-    pose.eye = pose.center + (pose.eye - pose.center) * scale;
+    // The direction of CityCameras' oblique view (from the south-west, about 35 degrees down);
+    // the distance the nearest at which every corner of the framed box is in view.
+    const CameraPose oblique = CityCameras::compute("oblique", scene, aspect);
+    osg::Vec3d forward = oblique.center - oblique.eye;
+    forward.normalize();
+    osg::Vec3d right = forward ^ osg::Vec3d(0.0, 0.0, 1.0);
+    right.normalize();
+    const osg::Vec3d up = right ^ forward;
+    const osg::BoundingBoxd box = framedBox(scene);
+    const osg::Vec3d c = box.center();
+    const double ty = std::tan(osg::DegreesToRadians(fovy) * 0.5) * kHomeMargin, tx = ty * aspect;
+    double distance = 1e-3;
+    for (unsigned i = 0; i < 8; ++i)
+    {
+        const osg::Vec3d d = box.corner(i) - c;
+        // In view when |d.right| <= tx (D + d.forward) and |d.up| <= ty (D + d.forward).
+        distance = std::max(distance, std::fabs(d * right) / tx - d * forward);
+        distance = std::max(distance, std::fabs(d * up) / ty - d * forward);
+    }
+    CameraPose pose;
+    pose.center = c;
+    pose.eye = c - forward * distance;
+    pose.up = up;
     pose.fovy = fovy;
     return pose;
 }

@@ -365,6 +365,21 @@ void ScenarioEditor::addRoutePoint(const std::string& name, const osg::Vec2d& po
          });
 }
 
+void ScenarioEditor::startRoute(const std::string& name, const osg::Vec2d& first, const osg::Vec2d& second)
+{
+    if (!finite2(first) || !finite2(second))
+        throw EditError("route '" + name + "': the points must be finite");
+    if (findRegion(getScenario(), name)) throw EditError("the scenario already has a region '" + name + "'");
+    edit("start route '" + name + "'", VALUES,
+         [&](UsageScenario& s)
+         {
+             RegionOfInterest* r =
+                 s.addRegion(new RegionOfInterest(RegionOfInterest::POLYLINE, {first, second}, 0.0));
+             r->setName(name);
+             r->setLineWidth(kEditorRouteWidth);
+         });
+}
+
 void ScenarioEditor::moveRoutePoint(const std::string& name, unsigned vertex, const osg::Vec2d& point)
 {
     if (!finite2(point)) throw EditError("route '" + name + "': the point must be finite");

@@ -116,14 +116,19 @@ OffscreenRenderer::OffscreenRenderer(const Settings& settings) : _settings(setti
     camera->setFinalDrawCallback(_finishCallback.get());
     _context->getState()->setUseModelViewAndProjectionUniforms(true);
 
+    setUpSun(*_viewer);
+    setPerspective(45.0);
+}
+
+void OffscreenRenderer::setUpSun(osg::View& view)
+{
     // A sun from the south-west, fixed in the world: the same shading from every camera.
-    _viewer->setLightingMode(osg::View::SKY_LIGHT);
-    osg::Light* sun = _viewer->getLight();
+    view.setLightingMode(osg::View::SKY_LIGHT);
+    osg::Light* sun = view.getLight();
     sun->setPosition(osg::Vec4(-0.45f, -0.55f, 0.70f, 0.0f));
     sun->setAmbient(osg::Vec4(0.42f, 0.42f, 0.45f, 1.0f));
     sun->setDiffuse(osg::Vec4(0.70f, 0.68f, 0.62f, 1.0f));
     sun->setSpecular(osg::Vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    setPerspective(45.0);
 }
 
 OffscreenRenderer::~OffscreenRenderer()
