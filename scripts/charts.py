@@ -182,6 +182,53 @@ def draw_saliency(rows, out):
     return save(fig, out)
 
 
+def draw_viewer(rows, out):
+    """loa-viewer's edit-to-frame latency against the scene's feature count, one line per edit,
+    and the same latency as a ratio to a full re-bind of the same fade edit (same run)."""
+    machine = rows[0]["machine"]
+    get = lambda p, k: re.search(k + r"=(\S+)", p).group(1)
+    edits = list(dict.fromkeys(get(r["parameters"], "edit") for r in rows))
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(11, 9))
+    for e in edits:
+        sel = sorted((int(get(r["parameters"], "features")), r["ms"], get(r["parameters"], "scene"))
+                     for r in rows if get(r["parameters"], "edit") == e)
+        label = "frame alone (no edit)" if e == "none" else e
+        ax.plot([p[0] for p in sel], [p[1] for p in sel], marker="o", label=label,
+                ls="--" if e in ("none", "full-rebind") else "-")
+    scenes = sorted(set((int(get(r["parameters"], "features")), get(r["parameters"], "scene")) for r in rows))
+    for n, sc in scenes:
+        ax.annotate(sc, (n, ax.get_ylim()[0]), fontsize=6, rotation=90, va="bottom", ha="right")
+    ax.set_xscale("log")
+    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.set_xlabel("features in the scene (log)")
+    ax.set_ylabel("edit + one finished frame, median (ms)")
+    errs = [r["err"] for r in rows if r["err"] is not None]
+    ax.set_title("viewer: edit-to-frame latency at 1280x720 against scene size\n"
+                 "largest difference of a frame after an edit to the frame after a full re-bind: %g (8-bit units)\n%s"
+                 % (max(errs) if errs else 0, machine), fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    names = [sc for _, sc in scenes]
+    kinds = [e for e in edits if e not in ("none", "full-rebind")]
+    bar = 0.8 / max(1, len(kinds))
+    for ki, k in enumerate(kinds):
+        xs, ys = [], []
+        for si, sc in enumerate(names):
+            for r in rows:
+                if get(r["parameters"], "scene") == sc and get(r["parameters"], "edit") == k:
+                    xs.append(si + ki * bar)
+                    ys.append(float(get(r["parameters"], "ratio_to_rebind")))
+        ax2.bar(xs, ys, width=bar, label=k)
+    ax2.axhline(1.0, color="black", lw=0.8)
+    ax2.set_xticks([i + bar * (len(kinds) - 1) / 2 for i in range(len(names))])
+    ax2.set_xticklabels(names, fontsize=8)
+    ax2.set_ylabel("latency / the fade edit with a full re-bind")
+    ax2.set_title("each edit against a full re-bind (same scene, same run)", fontsize=9)
+    ax2.legend(fontsize=8)
+    ax2.grid(axis="y", alpha=0.3)
+    return save(fig, out)
+
+
 def draw(path, out):
     rows = rows_of(path)
     if not rows:
@@ -189,6 +236,8 @@ def draw(path, out):
     name = os.path.basename(path)[:-4]
     if name == "saliency":
         return draw_saliency(rows, out)
+    if name == "viewer":
+        return draw_viewer(rows, out)
     machine = rows[0]["machine"]
     ratios, base = baseline_ratios(name, rows)
     labels = list(dict.fromkeys(k[0] for k in ratios))

@@ -5,6 +5,7 @@
 
 #include <osgLoA/city/CityCameras>
 #include <osgLoA/city/CityGenerator>
+#include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/util/ImageCompare>
 #include <osgLoA/util/ImageFile>
@@ -236,8 +237,9 @@ TEST(LoaViewerGLTest, PanelsAndAuthoringOnARealSceneAtAnOddSize)
     // The OpenCity block from its home view at 961x541: a circle dragged by mouse, the circle
     // scenario, a screenshot with the panels (against a golden), one without (against
     // loa-render's frame of the saved scenario from the same viewpoint).
-    const std::string script = "key r\ndrag 480 330 560 330 steps 2\nkey R\nscreenshot panels.png\n"
-                               "key tab\nscreenshot viewer.png\nkey s ctrl\nquit\n";
+    const std::string script =
+        "key r\ndrag 480 330 560 330 steps 2\nkey R\nscreenshot panels.png\n"
+        "key tab\nscreenshot viewer.png\nkey i\nscreenshot interest.png\nkey s ctrl\nquit\n";
     const ViewerRun run = runViewer(script, "'" + scene + "' --camera oblique --save circle.osgb", 961, 541);
     ASSERT_EQ(run.rc, 0) << run.command << "\n" << run.output;
     const std::string dir = std::string(LOA_BINARY_DIR) + "/test-output/loa-viewer-961x541";
@@ -246,6 +248,30 @@ TEST(LoaViewerGLTest, PanelsAndAuthoringOnARealSceneAtAnOddSize)
     EXPECT_GT(saved->getRegions()[0]->getRadius(), 1.0);
     expectSameFrame(dir, "viewer.png",
                     "'" + scene + "' --camera oblique --scenario '" + dir + "/circle.osgb'", 961, 541);
+    // The interest debug view (i): grey by interest (black in the circle, white far from it),
+    // red where no configuration matches; the sky stays.
+    osg::ref_ptr<osg::Image> interest = osgLoA::ImageFile::read(dir + "/interest.png");
+    ASSERT_TRUE(interest.valid());
+    unsigned drawn = 0, grey = 0, dark = 0, light = 0;
+    const osg::Vec4 sky = osgLoA::OffscreenRenderer::skyColor() * 255.0f;
+    for (int y = 0; y < interest->t(); ++y)
+        for (int x = 0; x < interest->s(); ++x)
+        {
+            const osg::Vec4 c = interest->getColor(x, y) * 255.0f;
+            if (std::fabs(c.r() - sky.r()) < 3 && std::fabs(c.g() - sky.g()) < 3 &&
+                std::fabs(c.b() - sky.b()) < 3)
+                continue;
+            ++drawn;
+            const bool isGrey = std::fabs(c.r() - c.g()) <= 6 && std::fabs(c.g() - c.b()) <= 6;
+            const bool isRed = c.r() > 200 && c.g() < 40 && c.b() < 40;
+            grey += isGrey || isRed ? 1 : 0;
+            dark += isGrey && c.r() < 64 ? 1 : 0;
+            light += isGrey && c.r() > 192 ? 1 : 0;
+        }
+    EXPECT_GT(drawn, 961u * 541u / 8);
+    EXPECT_GE(grey, drawn * 99 / 100) << grey << " of " << drawn;
+    EXPECT_GT(dark, drawn / 100);
+    EXPECT_GT(light, drawn / 100);
     osg::ref_ptr<osg::Image> panels = osgLoA::ImageFile::read(dir + "/panels.png");
     ASSERT_TRUE(panels.valid());
     osg::ref_ptr<osg::Image> golden = loatest::goldenOrUpdate("viewer-panels-opencity-961x541.png", *panels);
@@ -255,4 +281,33 @@ TEST(LoaViewerGLTest, PanelsAndAuthoringOnARealSceneAtAnOddSize)
     EXPECT_LE(cmp.failingFraction, 0.005) << cmp.summary();
     if (cmp.failingFraction > 0.005)
         loatest::saveFailure("viewer-panels-opencity-961x541", *panels, cmp.difference.get());
+}
+
+TEST(LoaViewerGLTest, TheHomeViewShowsTheCityFromAbove)
+{
+    skipWithoutXvfb();
+    // OSG's own home looks at a city edge-on (a thin line under the sky); loa-viewer's shows it
+    // from the south-west, the whole of it in the frame.
+    const ViewerRun run = runViewer("wait 1\nkey tab\nscreenshot home.png\nquit\n",
+                                    "-O 'seed=2 blocksX=4 blocksY=4'", 641, 359);
+    ASSERT_EQ(run.rc, 0) << run.command << "\n" << run.output;
+    osg::ref_ptr<osg::Image> home =
+        osgLoA::ImageFile::read(std::string(LOA_BINARY_DIR) + "/test-output/loa-viewer-641x359/home.png");
+    ASSERT_TRUE(home.valid());
+    const osg::Vec4 sky = osgLoA::OffscreenRenderer::skyColor() * 255.0f;
+    // Rows of the frame that show some of the model: edge-on, a thin band (OSG's home: about a
+    // tenth of the height); from above, most of the height.
+    unsigned rows = 0;
+    for (int y = 0; y < home->t(); ++y)
+    {
+        bool model = false;
+        for (int x = 0; x < home->s() && !model; ++x)
+        {
+            const osg::Vec4 c = home->getColor(x, y) * 255.0f;
+            model = std::fabs(c.r() - sky.r()) >= 3 || std::fabs(c.g() - sky.g()) >= 3 ||
+                    std::fabs(c.b() - sky.b()) >= 3;
+        }
+        rows += model ? 1 : 0;
+    }
+    EXPECT_GT(rows, 359u / 2) << "the city is seen edge-on";
 }

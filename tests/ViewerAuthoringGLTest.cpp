@@ -22,6 +22,7 @@
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 #include <osgGA/EventVisitor>
+#include <osgGA/KeySwitchMatrixManipulator>
 #include <osgGA/TrackballManipulator>
 #include <osgViewer/View>
 
@@ -569,8 +570,13 @@ TEST(HomeViewTest, ALoaSceneSetsTheStockViewersHome)
     osg::ref_ptr<osgViewer::View> view = new osgViewer::View;
     view->getCamera()->setViewport(0, 0, 800, 600);
     view->getCamera()->setProjectionMatrixAsPerspective(30.0, 800.0 / 600.0, 1.0, 10000.0);
+    // As osgviewer holds it: a trackball (and others) in a KeySwitchMatrixManipulator.
     osg::ref_ptr<osgGA::TrackballManipulator> trackball = new osgGA::TrackballManipulator;
-    view->setCameraManipulator(trackball.get(), false);
+    osg::ref_ptr<osgGA::TrackballManipulator> second = new osgGA::TrackballManipulator;
+    osg::ref_ptr<osgGA::KeySwitchMatrixManipulator> keySwitch = new osgGA::KeySwitchMatrixManipulator;
+    keySwitch->addMatrixManipulator('1', "Trackball", trackball.get());
+    keySwitch->addMatrixManipulator('2', "Other", second.get());
+    view->setCameraManipulator(keySwitch.get(), true); // OSG's edge-on home first
     view->setSceneData(node.get());
     osgGA::EventVisitor ev;
     ev.setActionAdapter(view.get());
@@ -583,10 +589,17 @@ TEST(HomeViewTest, ALoaSceneSetsTheStockViewersHome)
     EXPECT_LT((eye - expected.eye).length(), 1e-6);
     EXPECT_LT((center - expected.center).length(), 1e-6);
     EXPECT_FALSE(trackball->getAutoComputeHomePosition());
-    // The manipulator stands there now.
+    // The manipulators stand there now: the view's camera is looking from the home.
     osg::Vec3d e2, c2, u2;
     trackball->getTransformation(e2, c2, u2);
     EXPECT_LT((e2 - expected.eye).length(), 1e-6);
+    second->getTransformation(e2, c2, u2);
+    EXPECT_LT((e2 - expected.eye).length(), 1e-6);
+    const osg::Matrixd seen = keySwitch->getInverseMatrix();
+    const osg::Matrixd wanted = osg::Matrixd::lookAt(expected.eye, expected.center, expected.up);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            EXPECT_NEAR(seen(i, j), wanted(i, j), 1e-6 * std::max(1.0, std::fabs(wanted(i, j))));
 }
 
 TEST(ViewerSessionTest, TheCircleOfInterestAuthoredWithThePointer)

@@ -121,3 +121,10 @@ std::vector<Row> abstraction(unsigned frames, std::string& renderer);
  *  time against table size (Ward, centroid) and quantization error against the number of colours
  *  (hierarchical against k-means). */
 std::vector<Row> palette(unsigned frames, std::string& renderer);
+
+/** Case "viewer" (BenchViewer.cpp): loa-viewer's edit-to-frame latency against scene size: the
+ *  circle-of-interest scenario on demo cities of 2x2 to 16x16 blocks and the real test scenes at
+ *  1280x720, a fade edit, a region move, a style change and a feature's type change through
+ *  ScenarioEditor, each followed by one finished frame, against the same fade edit with a full
+ *  re-bind (ratio_to_rebind). */
+std::vector<Row> viewer(unsigned frames, std::string& renderer);

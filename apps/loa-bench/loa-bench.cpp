@@ -120,6 +120,12 @@ cases:
   preprocess     paper 004's pre-process, bilateral then DoG on every mip level of 1,520
                  textures of 128x128, as textures per second: OpenCV, our GPU, our CPU on all
                  cores, and the flow-based version on the GPU
+  viewer         loa-viewer's edit-to-frame latency against scene size (demo cities of 2x2 to
+                 16x16 blocks, the real test scenes; 1280x720, oblique): the circle-of-interest
+                 scenario, then a fade edit, a region move, a style change and a feature's
+                 type change through ScenarioEditor, each with one finished frame, and the
+                 fade edit with a full re-bind (ratio_to_rebind); error_mean = mean difference
+                 of the frame after the edit to the frame after a full re-bind (8-bit units)
 
 )";
 
@@ -493,7 +499,8 @@ int main(int argc, char** argv)
                                                                {"preprocess", preprocess},
                                                                {"filtering", filtering},
                                                                {"abstraction", abstraction},
-                                                               {"palette", palette}};
+                                                               {"palette", palette},
+                                                               {"viewer", viewer}};
     return loa::runTool(
         "loa-bench",
         [&]() -> int

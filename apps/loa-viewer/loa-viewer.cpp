@@ -110,6 +110,14 @@ int run(const Options& o)
     viewer.setSceneData(session.getRoot());
     viewer.realize();
     if (!viewer.isRealized()) throw std::runtime_error("no window could be opened (is DISPLAY set?)");
+    {
+        // As OffscreenRenderer does for the tools: the shaders that read osg_ModelViewMatrix and
+        // its kin (the interest debug view, the palette style) get them.
+        osgViewer::Viewer::Contexts contexts;
+        viewer.getContexts(contexts);
+        for (osg::GraphicsContext* gc : contexts)
+            gc->getState()->setUseModelViewAndProjectionUniforms(true);
+    }
 
     // The field of view of CityCameras and loa-render (45 degrees; osgViewer's default is 30),
     // so that a viewpoint frames what the tools' camera of the same name frames.

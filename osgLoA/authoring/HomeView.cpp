@@ -3,6 +3,8 @@
 #include <osgLoA/semantics/FeatureIndex>
 
 #include <osg/ComputeBoundsVisitor>
+#include <osgGA/KeySwitchMatrixManipulator>
+#include <osgGA/StandardManipulator>
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +87,18 @@ void HomeView::apply(osgGA::CameraManipulator& manipulator, const CameraPose& po
 {
     manipulator.setAutoComputeHomePosition(false);
     manipulator.setHomePosition(pose.eye, pose.center, pose.up, false);
-    manipulator.home(0.0);
+    // The stock viewers hold their manipulators in a KeySwitchMatrixManipulator, whose
+    // home(double) does nothing: each manipulator gets the home and goes there.
+    if (auto* keySwitch = dynamic_cast<osgGA::KeySwitchMatrixManipulator*>(&manipulator))
+    {
+        for (unsigned i = 0; i < keySwitch->getNumMatrixManipulators(); ++i)
+            if (osgGA::CameraManipulator* m = keySwitch->getMatrixManipulatorWithIndex(i)) apply(*m, pose);
+        return;
+    }
+    if (auto* standard = dynamic_cast<osgGA::StandardManipulator*>(&manipulator))
+        standard->setTransformation(pose.eye, pose.center, pose.up);
+    else
+        manipulator.setByInverseMatrix(osg::Matrixd::lookAt(pose.eye, pose.center, pose.up));
 }
 
 } // namespace osgLoA
