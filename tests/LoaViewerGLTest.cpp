@@ -126,7 +126,8 @@ struct ViewerRun
 };
 
 /** Runs loa-viewer with a script in an Xvfb screen of the window's size. */
-ViewerRun runViewer(const std::string& script, const std::string& arguments, int width, int height)
+ViewerRun runViewer(const std::string& script, const std::string& arguments, int width, int height,
+                    const std::string& environment = std::string())
 {
     const std::string dir =
         loatest::freshDirectory("loa-viewer-" + std::to_string(width) + "x" + std::to_string(height));
@@ -140,9 +141,9 @@ ViewerRun runViewer(const std::string& script, const std::string& arguments, int
     {
         const unsigned display = 100 + (static_cast<unsigned>(::getpid()) * 41u + runs++ * 13u) % 800u;
         r.command = "cd '" + dir + "' && xvfb-run -n " + std::to_string(display) + " -a -s '-screen 0 " +
-                    std::to_string(width) + "x" + std::to_string(height) + "x24' env OSG_LIBRARY_PATH='" +
-                    std::string(LOA_BINARY_DIR) + "/lib' OSG_NOTIFY_LEVEL=WARN '" + LOA_VIEWER_EXE +
-                    "' --size " + std::to_string(width) + "x" + std::to_string(height) +
+                    std::to_string(width) + "x" + std::to_string(height) + "x24' env " + environment +
+                    " OSG_LIBRARY_PATH='" + std::string(LOA_BINARY_DIR) + "/lib' OSG_NOTIFY_LEVEL=WARN '" +
+                    LOA_VIEWER_EXE + "' --size " + std::to_string(width) + "x" + std::to_string(height) +
                     " --script script.txt " + arguments;
         r.rc = loatest::run(r.command, r.output);
         if (r.output.find("Unable to open display") == std::string::npos) break;
@@ -310,4 +311,24 @@ TEST(LoaViewerGLTest, TheHomeViewShowsTheCityFromAbove)
         rows += model ? 1 : 0;
     }
     EXPECT_GT(rows, 359u / 2) << "the city is seen edge-on";
+}
+
+TEST(LoaViewerGLTest, AShaderReloadShowsTheCompileLog)
+{
+    skipWithoutXvfb();
+    // A style's fragment stage overridden through OSG_FILE_PATH with a syntax error: F5 rebuilds
+    // the style programs from the files and the log names the shader, its stage and the error.
+    const std::string dir = loatest::freshDirectory("loa-viewer-shaders");
+    {
+        std::ofstream out(dir + "/loa_style_photorealistic.frag.glsl");
+        out << "#version 450 compatibility\nvec4 loa_styleColor(vec3 a, vec3 b, vec3 c, vec2 d, vec4 e) "
+               "{ return this is not glsl; }\n";
+    }
+    const ViewerRun run =
+        runViewer("key f5\nwait 2\nquit\n", "-O 'seed=2 blocksX=2 blocksY=2' --no-panels 2>&1", 320, 240,
+                  "OSG_FILE_PATH='" + dir + "'");
+    const std::string& output = run.output;
+    EXPECT_NE(output.find("shader log:"), std::string::npos) << output;
+    EXPECT_NE(output.find("loa_style_photorealistic.frag.glsl"), std::string::npos) << output;
+    EXPECT_NE(output.find("fragment"), std::string::npos) << output;
 }

@@ -162,7 +162,7 @@ void ViewerPanels::build()
     style();
     ImGui::SetNextWindowPos(ImVec2(compact ? w - 378 : 8.0f, compact ? 60.0f : 554.0f),
                             ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 150), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(compact ? 370.0f : 520.0f, 190), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowCollapsed(compact, ImGuiCond_FirstUseEver);
     feature();
 }
@@ -483,7 +483,35 @@ void ViewerPanels::feature()
         return ImGui::End();
     }
     const osgLoA::FeatureInspector::Report& r = s.inspection;
-    ImGui::TextUnformatted(r.text().c_str());
+    ImGui::Text("feature %u: %s%s%s (%s)", r.id, r.type.c_str(), r.subType.empty() ? "" : "/",
+                r.subType.c_str(), r.source.c_str());
+    if (!r.label.empty()) ImGui::Text("'%s'", r.label.c_str());
+    if (!r.sourceType.empty()) ImGui::TextDisabled("model class: %s", r.sourceType.c_str());
+    ImGui::Text("interest %.3f%s%s", r.staticInterest, r.landmark ? ", landmark" : "",
+                r.focus ? ", focus object" : "");
+    // Each matching configuration's interest and blend weight at the clicked point.
+    if (!r.weights.empty() &&
+        ImGui::BeginTable("weights", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit))
+    {
+        for (const char* h : {"configuration", "style", "mode", "interest", "weight"})
+            ImGui::TableSetupColumn(h);
+        ImGui::TableHeadersRow();
+        for (const osgLoA::FeatureInspector::Weight& w : r.weights)
+        {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(w.name.c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(w.style.c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(w.interpolation.c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3f", w.interest);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3f", w.weight);
+        }
+        ImGui::EndTable();
+    }
     osgLoA::ScenarioEditor& e = s.getEditor();
     if (ImGui::Button(r.focus ? "clear focus" : "set as focus"))
         s.attempt([&] { e.setFocusFeature(r.focus ? 0 : r.id); });

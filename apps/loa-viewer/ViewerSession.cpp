@@ -333,6 +333,10 @@ bool ViewerSession::release(const osg::Camera& camera, double x, double y)
                     else
                         _editor->startRoute("route", _routeStart, p);
                     _routeStarted = false;
+                    for (const auto& r : _editor->getScenario().getRegions())
+                        if (r.valid() && r->getName() == "route")
+                            say("route: " + std::to_string(r->getVertices().size()) +
+                                " points (drag one to move it, right-click one to remove it)");
                 });
         else if (button == 3 && _routeVertex >= 0)
             attempt([&] { _editor->removeRoutePoint("route", unsigned(_routeVertex)); });

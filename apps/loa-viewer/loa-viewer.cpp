@@ -159,7 +159,13 @@ int run(const Options& o)
             for (const osgLoA::ShaderDiagnostic& d : osgLoA::ShaderLibrary::check(*p, *info.getState()))
                 log += d.message() + "\n";
         session.shaderLog = log;
-        if (!log.empty()) session.say("a shader failed to compile (the style panel shows the log)", true);
+        if (!log.empty())
+        {
+            session.say("a shader failed to compile (the style panel shows the log)", true);
+            std::cerr << "loa-viewer: shader log:\n" << log;
+        }
+        else
+            session.say("shaders reloaded from OSG_FILE_PATH: every style program compiled and linked");
     };
     viewer.addEventHandler(imgui.get());
     viewer.addEventHandler(new loa::AuthoringHandler(session, *imgui));
