@@ -228,6 +228,48 @@ TEST(ScenarioEditorTest, AGestureIsOneStep)
     EXPECT_DOUBLE_EQ(e->getScenario().getRegions()[0]->getRadius(), 100.0);
 }
 
+TEST(ScenarioEditorTest, AGestureMergesOnlyItsOwnEdits)
+{
+    // A drag's edits are one step; an edit of another kind arriving while the gesture is open
+    // (a key pressed during a drag) is a step of its own.
+    osg::ref_ptr<LoANode> node = boundNode(smallCity().get(), "distance");
+    osg::ref_ptr<ScenarioEditor> e = new ScenarioEditor(*node);
+    e->beginGesture();
+    e->placeCircle("c", osg::Vec2d(0.0, 0.0), 10.0);
+    e->placeCircle("c", osg::Vec2d(0.0, 0.0), 20.0);
+    e->setFadeIn(0, osg::Vec2f(0.1f, 0.9f));
+    e->placeCircle("c", osg::Vec2d(0.0, 0.0), 30.0);
+    e->endGesture();
+    EXPECT_EQ(e->history().size(), 3u);
+    e->undo();
+    EXPECT_DOUBLE_EQ(e->getScenario().getRegions()[0]->getRadius(), 20.0);
+}
+
+TEST(ScenarioEditorTest, ARegionFadeIsInSceneUnitsWhateverTheRampsScale)
+{
+    // circular-roi measures its region in multiples of the scene's size; a fade dragged in the
+    // view is in scene units: the ramp becomes absolute from where the node placed its near end.
+    osg::ref_ptr<LoANode> node = boundNode(smallCity().get(), "circular-roi");
+    osg::ref_ptr<ScenarioEditor> e = new ScenarioEditor(*node);
+    ASSERT_EQ(e->getScenario().getConfigurations()[0]->getMetric(SaliencyMetric::REGION)->getScale(),
+              SaliencyMetric::SCENE);
+    e->setRegionFade(30.0);
+    for (const auto& c : e->getScenario().getConfigurations())
+    {
+        const SaliencyMetric* m = c->getMetric(SaliencyMetric::REGION);
+        EXPECT_EQ(m->getScale(), SaliencyMetric::ABSOLUTE);
+        EXPECT_DOUBLE_EQ(m->getNear(), 0.0);
+        EXPECT_DOUBLE_EQ(m->getFar(), 30.0);
+    }
+    node->evaluate(osg::Vec3d(0.0, -600.0, 400.0));
+    EXPECT_DOUBLE_EQ(node->getEvaluator()
+                         ->getScenario()
+                         ->getConfigurations()[0]
+                         ->getMetric(SaliencyMetric::REGION)
+                         ->getFar(),
+                     30.0);
+}
+
 TEST(ScenarioEditorTest, ValueEditsRefitStructureEditsRebind)
 {
     // Item 5: editing a fade range re-fits the scenario (uniforms) without indexing the features,
@@ -724,9 +766,26 @@ TEST(ViewerSessionTest, RoutePointsFocusAndInspection)
     ASSERT_TRUE(session.inspected);
     EXPECT_EQ(session.inspection.id, building->getId());
     EXPECT_EQ(session.inspection.type, "building");
-    session.getNode().evaluate(pose.eye);
-    session.refreshInspection();
-    EXPECT_TRUE(session.inspection.focus);
+    EXPECT_TRUE(session.inspection.focus); // the focus edit was evaluated before the inspection
+    // An edit while a feature is inspected refreshes the inspection from the edited scenario:
+    // a configuration removed is gone from its weights.
+    const std::size_t weightsBefore = session.inspection.weights.size();
+    ASSERT_GE(weightsBefore, 1u);
+    const unsigned firstMatch = session.inspection.weights[0].configuration;
+    ASSERT_TRUE(session.attempt([&] { session.getEditor().removeConfiguration(firstMatch); }));
+    EXPECT_EQ(session.inspection.weights.size(), weightsBefore - 1);
+    session.undo();
+    EXPECT_EQ(session.inspection.weights.size(), weightsBefore);
+    // A type set by hand is saved beside the scenario as a rule set the tools read (--rules).
+    session.getEditor().setFeatureType(building->getId(), FeatureType::Green, "park");
+    const std::string file = loatest::freshDirectory("viewer-rules") + "/s.osgt";
+    session.saveScenario(file);
+    ASSERT_EQ(loa::ViewerSession::rulesPathFor(file), file.substr(0, file.size() - 5) + ".rules.osgt");
+    osg::ref_ptr<ClassificationRuleSet> rules =
+        ClassificationRuleSet::read(loa::ViewerSession::rulesPathFor(file));
+    ASSERT_EQ(rules->getRules().size(), 1u);
+    EXPECT_EQ(rules->getRules()[0]->getType(), FeatureType::Green);
+    EXPECT_EQ(rules->getRules()[0]->getSubType(), "park");
     // Navigate mode leaves the pointer to the camera.
     session.mode = loa::ViewerSession::NAVIGATE;
     EXPECT_FALSE(session.press(*camera, 10, 10, 1));

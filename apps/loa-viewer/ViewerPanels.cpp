@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <sstream>
 
 namespace loa
@@ -129,12 +130,15 @@ bool combo(const char* label, int& current, const std::vector<std::string>& item
     return changed;
 }
 
-/** Opens and closes an editor gesture around a widget: a slider dragged over many frames is one
- *  undoable step. Call right after the widget. */
-void gesture(osgLoA::ScenarioEditor& editor)
+/** An edit from a widget held over many frames (a slider, a drag field): the gesture opens when
+ *  the widget is activated, before its first change is applied, and closes when it is let go,
+ *  so that the whole drag is one undoable step. changed: the widget's return value (evaluated,
+ *  as an argument, before this runs: the IsItem* calls ask about that widget). */
+template <typename F> void edited(ViewerSession& s, bool changed, F&& f)
 {
-    if (ImGui::IsItemActivated()) editor.beginGesture();
-    if (ImGui::IsItemDeactivated()) editor.endGesture();
+    if (ImGui::IsItemActivated()) s.getEditor().beginGesture();
+    if (changed) s.attempt(std::forward<F>(f));
+    if (ImGui::IsItemDeactivated()) s.getEditor().endGesture();
 }
 } // namespace
 
@@ -245,7 +249,11 @@ void ViewerPanels::library()
     if (_saveAs[0] == 0 || ImGui::IsWindowAppearing())
         std::strncpy(_saveAs, s.savePath.c_str(), sizeof(_saveAs) - 1);
     ImGui::SetNextItemWidth(220);
-    if (ImGui::InputText("##saveas", _saveAs, sizeof(_saveAs))) s.savePath = _saveAs;
+    if (ImGui::InputText("##saveas", _saveAs, sizeof(_saveAs)))
+    {
+        s.savePath = _saveAs;
+        s.savePathGiven = true;
+    }
     ImGui::SameLine();
     if (ImGui::Button("save (Ctrl+S)")) s.attempt([&] { s.saveScenario(s.savePath); });
     if (std::strcmp(_saveAs, s.savePath.c_str()) != 0 && !ImGui::IsItemActive())
@@ -285,7 +293,10 @@ void ViewerPanels::configuration()
     int sel = int(selected);
     if (combo("configuration", sel, names)) selected = unsigned(sel);
     const unsigned j = selected;
-    const osgLoA::TransitionConfiguration& c = *configs[j];
+    // Held: an edit below replaces the scenario's configurations (UsageScenario::assign); the
+    // rest of this frame's panel reads the one it started with.
+    const osg::ref_ptr<const osgLoA::TransitionConfiguration> held = configs[j];
+    const osgLoA::TransitionConfiguration& c = *held;
     if (ImGui::Button("duplicate")) s.attempt([&] { selected = e.duplicateConfiguration(j); });
     ImGui::SameLine();
     if (ImGui::Button("remove")) s.attempt([&] { e.removeConfiguration(j); });
@@ -335,9 +346,8 @@ void ViewerPanels::configuration()
                 e.setSubTypes(j, list);
             });
     osg::Vec2f range = c.getInterestRange();
-    if (ImGui::DragFloat2("interest scope", range.ptr(), 0.01f, 0.0f, 1.0f))
-        s.attempt([&] { e.setInterestRange(j, range); });
-    gesture(e);
+    edited(s, ImGui::DragFloat2("interest scope", range.ptr(), 0.01f, 0.0f, 1.0f),
+           [&] { e.setInterestRange(j, range); });
     // Interpolation and combination.
     int mode = int(c.getInterpolation());
     if (combo("interpolation", mode, {"fragment", "object", "group"}))
@@ -347,16 +357,14 @@ void ViewerPanels::configuration()
         s.attempt([&] { e.setCombination(j, osgLoA::TransitionConfiguration::Combination(comb)); });
     // Validity: fade-in and fade-out over interest.
     osg::Vec2f in = c.getFadeIn(), out = c.getFadeOut();
-    if (ImGui::SliderFloat2("fade-in", in.ptr(), 0.0f, 1.0f)) s.attempt([&] { e.setFadeIn(j, in); });
-    gesture(e);
-    if (ImGui::SliderFloat2("fade-out", out.ptr(), 0.0f, 1.0f)) s.attempt([&] { e.setFadeOut(j, out); });
-    gesture(e);
+    edited(s, ImGui::SliderFloat2("fade-in", in.ptr(), 0.0f, 1.0f), [&] { e.setFadeIn(j, in); });
+    edited(s, ImGui::SliderFloat2("fade-out", out.ptr(), 0.0f, 1.0f), [&] { e.setFadeOut(j, out); });
     // Metrics.
     ImGui::Separator();
     for (int k = 0; k < osgLoA::SaliencyMetric::kNumKinds; ++k)
     {
         const auto kind = osgLoA::SaliencyMetric::Kind(k);
-        const osgLoA::SaliencyMetric* m = c.getMetric(kind);
+        const osg::ref_ptr<const osgLoA::SaliencyMetric> m = c.getMetric(kind);
         ImGui::PushID(k);
         bool on = m != nullptr;
         if (ImGui::Checkbox(osgLoA::SaliencyMetric::toString(kind), &on))
@@ -374,14 +382,12 @@ void ViewerPanels::configuration()
             double v[3] = {m->getNear(), m->getFar(), m->getWeight()};
             const float speed = float(std::max(0.001, std::fabs(m->getFar() - m->getNear()) * 0.005));
             ImGui::SetNextItemWidth(200);
-            if (ImGui::DragScalarN("near/far", ImGuiDataType_Double, v, 2, speed))
-                s.attempt([&] { e.setMetric(j, kind, v[0], v[1], v[2]); });
-            gesture(e);
+            edited(s, ImGui::DragScalarN("near/far", ImGuiDataType_Double, v, 2, speed),
+                   [&] { e.setMetric(j, kind, v[0], v[1], v[2]); });
             ImGui::SameLine();
             ImGui::SetNextItemWidth(60);
-            if (ImGui::DragScalar("w", ImGuiDataType_Double, &v[2], 0.01f))
-                s.attempt([&] { e.setMetric(j, kind, v[0], v[1], std::max(0.0, v[2])); });
-            gesture(e);
+            edited(s, ImGui::DragScalar("w", ImGuiDataType_Double, &v[2], 0.01f),
+                   [&] { e.setMetric(j, kind, v[0], v[1], std::max(0.0, v[2])); });
             ImGui::TextDisabled("  scale: %s", osgLoA::SaliencyMetric::toString(m->getScale()));
         }
         ImGui::PopID();
@@ -446,17 +452,25 @@ void ViewerPanels::style()
                 default:
                     break;
                 }
-                if (changed)
+                // Live while the widget is held; one undoable step when it is let go, from the
+                // value it had when it was taken.
+                static std::map<std::string, UniformValue> heldFrom;
+                const std::string uniformName = entry.first;
+                const std::string key = styleName + "|" + uniformName;
+                if (ImGui::IsItemActivated()) heldFrom[key] = before;
+                if (changed) setStyleUniform(node, styleName, uniformName, value);
+                if (ImGui::IsItemDeactivatedAfterEdit() || (changed && !ImGui::IsItemActive()))
                 {
-                    const std::string uniformName = entry.first;
+                    const UniformValue from = heldFrom.count(key) ? heldFrom[key] : before;
+                    heldFrom.erase(key);
                     osg::ref_ptr<osgLoA::LoANode> keep = &node;
-                    setStyleUniform(node, styleName, uniformName, value);
                     s.getEditor().recordLive(
                         "'" + styleName + "' " + uniformName,
-                        [keep, styleName, uniformName, before, value](bool redo)
-                        { setStyleUniform(*keep, styleName, uniformName, redo ? value : before); });
-                    break; // the uniform list may have changed
+                        [keep, styleName, uniformName, from, value](bool redo)
+                        { setStyleUniform(*keep, styleName, uniformName, redo ? value : from); });
                 }
+                else if (ImGui::IsItemDeactivated())
+                    heldFrom.erase(key);
             }
     }
     ImGui::Separator();

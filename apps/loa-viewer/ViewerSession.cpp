@@ -6,6 +6,7 @@
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/transitions/TransitionUniforms>
 
+#include <osgDB/FileNameUtils>
 #include <osgUtil/CullVisitor>
 
 #include <cmath>
@@ -112,9 +113,23 @@ void ViewerSession::rewrap()
 
 void ViewerSession::afterEdit()
 {
+    // The eye of the last evaluation: the node binds or re-fits now and evaluates from there,
+    // so that the inspector and the interest view show the edited scenario, not the old one.
+    const osgLoA::ScenarioEvaluator* e = _node->getEvaluator();
+    const osg::Vec3d eye = e && e->isBound() ? e->getView().eye : _lastEye;
+    _lastEye = eye;
     if (_node->getScenario()->getRevision() != _wrappedRevision) rewrap();
+    _node->evaluate(eye);
     if (_interestView) setInterestView(true); // its program follows the scenario's structure
     refreshInspection();
+    // A file name that came from the scenario's name follows it through undo and redo.
+    if (!savePathGiven) savePath = _node->getScenario()->getName() + ".osgt";
+}
+
+const osgLoA::UsageScenario::Regions& ViewerSession::fittedRegions() const
+{
+    const osgLoA::ScenarioEvaluator* e = _node->getEvaluator();
+    return e && e->isBound() ? e->getScenario()->getRegions() : _node->getScenario()->getRegions();
 }
 
 bool ViewerSession::undo()
@@ -153,6 +168,7 @@ void ViewerSession::loadScenario(const std::string& nameOrPath)
     if (s->getName().empty()) s->setName(nameOrPath);
     _editor->replace(*s, "load scenario '" + s->getName() + "'");
     origin = from;
+    savePathGiven = false;
     savePath = s->getName() + ".osgt";
     _editor->markSaved();
     afterEdit();
@@ -164,6 +180,7 @@ void ViewerSession::duplicateScenario(const std::string& newName)
     if (newName.empty()) throw std::invalid_argument("a scenario needs a name");
     _editor->edit("duplicate as '" + newName + "'", osgLoA::ScenarioEditor::VALUES,
                   [&](osgLoA::UsageScenario& s) { s.setName(newName); });
+    savePathGiven = false;
     savePath = newName + ".osgt";
     origin = "(not saved)";
 }
@@ -174,7 +191,24 @@ void ViewerSession::saveScenario(const std::string& path)
     osgLoA::ScenarioLibrary::writeFile(_editor->getScenario(), path);
     _editor->markSaved();
     origin = path;
-    say("saved '" + _editor->getScenario().getName() + "' to " + path);
+    std::string rules;
+    if (!_editor->getUserRules().getRules().empty())
+    {
+        // Types set by hand go beside the scenario as a rule set (loa-viewer --rules FILE, and
+        // every tool's --rules, classify the model the same way next time).
+        rules = rulesPathFor(path);
+        _editor->getUserRules().write(rules);
+    }
+    say("saved '" + _editor->getScenario().getName() + "' to " + path +
+        (rules.empty() ? std::string() : " and the types set by hand to " + rules) +
+        (_editor->getCount(osgLoA::ScenarioEditor::LIVE) > 0
+             ? std::string("; style uniform edits are not part of a scenario file")
+             : std::string()));
+}
+
+std::string ViewerSession::rulesPathFor(const std::string& scenarioPath)
+{
+    return osgDB::getNameLessExtension(scenarioPath) + ".rules.osgt";
 }
 
 osgLoA::FeaturePicker::Hit ViewerSession::pick(const osg::Camera& camera, double x, double y)
@@ -210,9 +244,12 @@ bool ViewerSession::press(const osg::Camera& camera, double x, double y, int but
     osgLoA::UsageScenario& s = _editor->getScenario();
     if (mode == REGION && hit.ground)
     {
-        // Inside an absolute circle: grab it (left) or set the fade from it (right).
-        for (const auto& r : s.getRegions())
-            if (r.valid() && r->getShape() == osgLoA::RegionOfInterest::CIRCLES && r->isResolved() &&
+        // The circles where the scene shows them: as the node fitted them (a library circle
+        // placed at the scene's centre, in multiples of its size, is in scene units there).
+        const osgLoA::UsageScenario::Regions& placed = fittedRegions();
+        // Inside a circle: grab it (left) or set the fade from it (right).
+        for (const auto& r : placed)
+            if (r.valid() && r->getShape() == osgLoA::RegionOfInterest::CIRCLES &&
                 r->getVertices().size() == 1 &&
                 (r->getVertices()[0] - _pressGround).length() <= r->getRadius())
             {
@@ -225,7 +262,7 @@ bool ViewerSession::press(const osg::Camera& camera, double x, double y, int but
         {
             // The fade of the nearest circle.
             double best = 1e300;
-            for (const auto& r : s.getRegions())
+            for (const auto& r : placed)
                 if (r.valid() && r->getShape() == osgLoA::RegionOfInterest::CIRCLES &&
                     r->getVertices().size() == 1)
                 {
@@ -300,6 +337,8 @@ bool ViewerSession::drag(const osg::Camera& camera, double x, double y)
 
 bool ViewerSession::release(const osg::Camera& camera, double x, double y)
 {
+    // Whatever the mode now (it may have changed during the drag), a gesture ends here.
+    if (_editor->inGesture()) _editor->endGesture();
     if (mode == NAVIGATE || _button == 0 || _button == 2)
     {
         _button = 0;
@@ -307,8 +346,6 @@ bool ViewerSession::release(const osg::Camera& camera, double x, double y)
     }
     const int button = _button;
     _button = 0;
-    const bool wasGesture = _editor->inGesture();
-    if (wasGesture) _editor->endGesture();
     if (_moved) return true;
     const osgLoA::FeaturePicker::Hit hit = pick(camera, x, y);
     if (mode == ROUTE)

@@ -48,10 +48,14 @@ public:
     void loadScenario(const std::string& nameOrPath);
     /** The current scenario under a new name (the library panel's "duplicate"). */
     void duplicateScenario(const std::string& newName);
-    /** Writes the scenario (.osgt/.osgb/.osgx, atomically) and marks it saved. */
+    /** Writes the scenario (.osgt/.osgb/.osgx, atomically) and marks it saved; types set by
+     *  hand go beside it as a classification rule set (rulesPathFor). */
     void saveScenario(const std::string& path);
-    std::string savePath; ///< where Ctrl+S saves
-    std::string origin;   ///< where the scenario came from
+    /** NAME.rules.osgt for NAME.osgt (or .osgb, .osgx). */
+    static std::string rulesPathFor(const std::string& scenarioPath);
+    std::string savePath;       ///< where Ctrl+S saves
+    bool savePathGiven = false; ///< named by the user (--save, the panel): kept through undo
+    std::string origin;         ///< where the scenario came from
 
     // --- modes and pointer input (window coordinates: OSG's, origin bottom left)
     Mode mode = NAVIGATE;
@@ -121,6 +125,9 @@ public:
 
 private:
     void rewrap();
+    /** The regions as the node placed them (scene coordinates), else as written. */
+    const osgLoA::UsageScenario::Regions& fittedRegions() const;
+    osg::Vec3d _lastEye;
     osgLoA::FeaturePicker::Hit pick(const osg::Camera& camera, double x, double y);
     std::string newCircleName() const;
 

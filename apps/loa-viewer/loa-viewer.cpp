@@ -101,8 +101,26 @@ int run(const Options& o)
     {
         throw std::runtime_error(std::string("--scenario: ") + e.what());
     }
+    // A .loa model is a LoA node that would set the viewer's home in its first event: the
+    // viewer sets its own (and --camera) instead.
+    {
+        struct NoHome : osg::NodeVisitor
+        {
+            NoHome() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+            void apply(osg::Group& g) override
+            {
+                if (auto* loa = dynamic_cast<osgLoA::LoANode*>(&g)) loa->setHomeViewPending(false);
+                traverse(g);
+            }
+        } noHome;
+        scene->accept(noHome);
+    }
     loa::ViewerSession session(*scene, *scenario, origin);
-    if (!o.save.empty()) session.savePath = o.save;
+    if (!o.save.empty())
+    {
+        session.savePath = o.save;
+        session.savePathGiven = true;
+    }
 
     osgViewer::Viewer viewer;
     viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded); // panels edit the scene between frames
@@ -152,10 +170,16 @@ int run(const Options& o)
     {
         // After a shader reload: compile and link the new style programs here, with the
         // context current, for the log the style panel shows.
-        if (!session.programsToCheck) return;
+        if (!session.programsToCheck || !session.getNode().getRenderer()->isBound()) return;
         session.programsToCheck = false;
         std::string log;
-        for (osg::Program* p : session.getNode().getRenderer()->getPrograms())
+        const std::vector<osg::Program*> programs = session.getNode().getRenderer()->getPrograms();
+        if (programs.empty())
+        {
+            session.say("shaders reloaded: no style program to check", true);
+            return;
+        }
+        for (osg::Program* p : programs)
             for (const osgLoA::ShaderDiagnostic& d : osgLoA::ShaderLibrary::check(*p, *info.getState()))
                 log += d.message() + "\n";
         session.shaderLog = log;
@@ -180,7 +204,7 @@ int run(const Options& o)
     viewer.getWindows(windows);
     if (windows.empty()) throw std::runtime_error("no window could be opened");
     osgViewer::GraphicsWindow* window = windows.front();
-    std::string lastMessage;
+    std::string lastMessage, lastBindError;
     unsigned frames = 0;
     while (!viewer.done())
     {
@@ -189,6 +213,13 @@ int run(const Options& o)
             break;
         viewer.frame();
         ++frames;
+        // A scenario the editor accepted that the model cannot bind (fitting, preparation):
+        // the node draws it unstyled; say why.
+        if (session.getNode().getBindError() != lastBindError)
+        {
+            lastBindError = session.getNode().getBindError();
+            if (!lastBindError.empty()) session.say("the scenario cannot be bound: " + lastBindError, true);
+        }
         if (session.message != lastMessage)
         {
             lastMessage = session.message;

@@ -51,6 +51,7 @@ FeatureInspector::Report FeatureInspector::inspect(const LoANode& node, unsigned
     float sum = 0.0f;
     for (unsigned k = 0; k < s.numMatches; ++k)
     {
+        if (m[k].configuration >= configs.size() || !configs[m[k].configuration].valid()) continue;
         const TransitionConfiguration& c = *configs[m[k].configuration];
         Weight w;
         w.configuration = m[k].configuration;

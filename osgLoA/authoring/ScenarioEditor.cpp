@@ -97,7 +97,7 @@ void ScenarioEditor::record(Step step)
     // In a gesture, a scenario edit after the gesture's first one replaces that one's result
     // (keeping its state before).
     if (_gesture && _done == _gestureStart + 1 && _done == _steps.size() && !_steps.back().featureEdit &&
-        !step.featureEdit)
+        !step.featureEdit && _steps.back().label == step.label)
     {
         Step& last = _steps.back();
         last.after = step.after;
@@ -426,16 +426,32 @@ void ScenarioEditor::setRegionFade(double width)
     for (const auto& c : getScenario().getConfigurations())
         any = any || (c.valid() && c->getMetric(SaliencyMetric::REGION));
     if (!any) throw EditError("no configuration measures the region metric");
+    // A scene- or view-scaled ramp becomes absolute, from where the node fitted its near end:
+    // the width is in scene units.
+    const UsageScenario* fitted = _node->getEvaluator() && _node->getEvaluator()->isBound()
+                                      ? _node->getEvaluator()->getScenario()
+                                      : nullptr;
     edit("region fade", VALUES,
          [&](UsageScenario& s)
          {
-             for (const auto& c : s.getConfigurations())
+             for (std::size_t j = 0; j < s.getConfigurations().size(); ++j)
              {
+                 const osg::ref_ptr<TransitionConfiguration>& c = s.getConfigurations()[j];
                  if (!c.valid() || !c->getMetric(SaliencyMetric::REGION)) continue;
+                 const SaliencyMetric* placed =
+                     fitted && j < fitted->getConfigurations().size() &&
+                             fitted->getConfigurations()[j].valid()
+                         ? fitted->getConfigurations()[j]->getMetric(SaliencyMetric::REGION)
+                         : nullptr;
                  for (auto& m : c->getMetrics())
                      if (m.valid() && m->getKind() == SaliencyMetric::REGION)
                      {
                          osg::ref_ptr<SaliencyMetric> copy = osg::clone(m.get(), osg::CopyOp::DEEP_COPY_ALL);
+                         if (copy->getScale() != SaliencyMetric::ABSOLUTE)
+                         {
+                             copy->setNear(placed ? placed->getNear() : 0.0);
+                             copy->setScale(SaliencyMetric::ABSOLUTE);
+                         }
                          copy->setFar(copy->getNear() + width);
                          m = copy;
                      }
