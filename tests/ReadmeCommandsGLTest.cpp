@@ -5,7 +5,8 @@
 // installs the build into a scratch prefix and points OSG there instead, so the installed
 // layout (plugin RPATHs, data files) is what the osgconv lines use. Lines run in README order;
 // one that fails is tried again after the others (an example may read what a later one
-// writes). The interactive osgviewer lines are LoaViewerGLTest's (under xvfb).
+// writes). The interactive osgviewer lines are LoaViewerGLTest's (under xvfb); loa-viewer lines
+// run here under xvfb-run for three frames.
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -79,9 +80,12 @@ TEST(ReadmeCommandsGLTest, EveryToolCommandOfTheReadmeRuns)
         for (const std::string& c : todo)
         {
             const bool stock = c.compare(0, 8, "osgconv ") == 0;
+            // loa-viewer opens a window: under xvfb-run, for three frames.
+            const bool window = c.compare(0, 20, "build/bin/loa-viewer") == 0;
+            const std::string run = window ? "xvfb-run -a -s \"-screen 0 1280x720x24\" " + c + " --frames 3" : c;
             const int status =
                 loatest::run("cd '" + dir + "' && env -u OSG_LIBRARY_PATH " +
-                                 (stock ? stockEnv : std::string()) + "timeout 600 sh -c '" + c + "'",
+                                 (stock ? stockEnv : std::string()) + "timeout 600 sh -c '" + run + "'",
                              out);
             if (status != 0) failed.emplace_back(c, "exit " + std::to_string(status) + ": " + out);
         }
