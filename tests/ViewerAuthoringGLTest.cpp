@@ -14,6 +14,7 @@
 #include <osgLoA/render/OffscreenRenderer>
 #include <osgLoA/semantics/FeatureClassifier>
 #include <osgLoA/transitions/ScenarioLibrary>
+#include <osgLoA/util/AtomicFile>
 
 #include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
@@ -789,6 +790,46 @@ TEST(ViewerSessionTest, RoutePointsFocusAndInspection)
     // Navigate mode leaves the pointer to the camera.
     session.mode = loa::ViewerSession::NAVIGATE;
     EXPECT_FALSE(session.press(*camera, 10, 10, 1));
+}
+
+TEST(ViewerSessionTest, SavedViewpointsComeBack)
+{
+    osg::ref_ptr<osg::Group> city = smallCity();
+    osg::ref_ptr<UsageScenario> start = ScenarioLibrary::createBuiltin("distance");
+    const std::string file = loatest::freshDirectory("viewer-viewpoints") + "/views.txt";
+    CameraPose a, b;
+    a.eye.set(1.5, -200.25, 80.0);
+    a.center.set(0.0, 0.0, 0.0);
+    a.up.set(0.0, 0.0, 1.0);
+    b.eye.set(-3.0, 4.0, 500.0);
+    b.center.set(-3.0, 4.0, 0.0);
+    b.up.set(0.0, 1.0, 0.0);
+    {
+        loa::ViewerSession session(*city, *start, "built-in");
+        session.readViewpoints(file); // none yet
+        EXPECT_TRUE(session.viewpoints.empty());
+        session.viewpointsFile = file;
+        session.addViewpoint("gate", a);
+        session.addViewpoint("above", b);
+    }
+    loa::ViewerSession again(*city, *start, "built-in");
+    again.readViewpoints(file);
+    ASSERT_EQ(again.viewpoints.size(), 2u);
+    EXPECT_EQ(again.viewpoints[0].name, "gate");
+    EXPECT_EQ(again.viewpoints[0].pose.eye, a.eye);
+    EXPECT_EQ(again.viewpoints[1].pose.up, b.up);
+    EXPECT_TRUE(again.viewpoints[1].user);
+    // A malformed line is named.
+    osgLoA::AtomicFile::writeText(file, "ok|1 2 3|0 0 0|0 0 1\nbroken|1 2|0 0 0|0 0 1\n");
+    try
+    {
+        again.readViewpoints(file);
+        ADD_FAILURE() << "a malformed viewpoints file was accepted";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("views.txt:2"), std::string::npos) << e.what();
+    }
 }
 
 TEST(EventScriptTest, ParsesCommandsAndNamesTheLineOfAnError)

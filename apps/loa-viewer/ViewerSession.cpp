@@ -5,11 +5,14 @@
 #include <osgLoA/transitions/InterestDebugView>
 #include <osgLoA/transitions/ScenarioLibrary>
 #include <osgLoA/transitions/TransitionUniforms>
+#include <osgLoA/util/AtomicFile>
 
 #include <osgDB/FileNameUtils>
 #include <osgUtil/CullVisitor>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 namespace loa
 {
@@ -467,6 +470,53 @@ void ViewerSession::addViewpoint(const std::string& name, const osgLoA::CameraPo
     v.pose = pose;
     v.user = true;
     viewpoints.push_back(v);
+    if (!viewpointsFile.empty()) writeViewpoints(viewpointsFile);
+}
+
+void ViewerSession::writeViewpoints(const std::string& path) const
+{
+    std::ostringstream out;
+    out.precision(17);
+    out << "# loa-viewer viewpoints: NAME|eye|centre|up\n";
+    for (const Viewpoint& v : viewpoints)
+        if (v.user)
+            out << v.name << "|" << v.pose.eye.x() << " " << v.pose.eye.y() << " " << v.pose.eye.z() << "|"
+                << v.pose.center.x() << " " << v.pose.center.y() << " " << v.pose.center.z() << "|"
+                << v.pose.up.x() << " " << v.pose.up.y() << " " << v.pose.up.z() << "\n";
+    osgLoA::AtomicFile::writeText(path, out.str());
+}
+
+void ViewerSession::readViewpoints(const std::string& path)
+{
+    std::ifstream in(path);
+    if (!in) return; // none saved yet
+    int lineNo = 0;
+    for (std::string line; std::getline(in, line);)
+    {
+        ++lineNo;
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> parts;
+        std::istringstream fields(line);
+        for (std::string f; std::getline(fields, f, '|');)
+            parts.push_back(f);
+        osgLoA::CameraPose pose;
+        bool ok = parts.size() == 4 && !parts[0].empty();
+        for (std::size_t i = 1; ok && i < 4; ++i)
+        {
+            std::istringstream v(parts[i]);
+            osg::Vec3d& target = i == 1 ? pose.eye : i == 2 ? pose.center : pose.up;
+            ok = bool(v >> target.x() >> target.y() >> target.z()) && target.valid();
+        }
+        if (ok) ok = (pose.center - pose.eye).length() > 0.0 && pose.up.length() > 0.0;
+        if (!ok)
+            throw std::runtime_error("--viewpoints: " + path + ":" + std::to_string(lineNo) +
+                                     ": expected NAME|ex ey ez|cx cy cz|ux uy uz with eye != centre");
+        Viewpoint vp;
+        vp.name = parts[0];
+        vp.pose = pose;
+        vp.user = true;
+        viewpoints.push_back(vp);
+    }
 }
 
 } // namespace loa

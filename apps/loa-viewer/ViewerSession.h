@@ -95,7 +95,15 @@ public:
         bool user = false;
     };
     std::vector<Viewpoint> viewpoints;
+    /** Adds a user viewpoint; with a viewpoints file (--viewpoints), writes every user
+     *  viewpoint there (atomically), so they come back next time. */
     void addViewpoint(const std::string& name, const osgLoA::CameraPose& pose);
+    std::string viewpointsFile;
+    /** Reads user viewpoints: one a line, "NAME|ex ey ez|cx cy cz|ux uy uz" ('#' comments); a
+     *  missing file is none yet. Throws std::runtime_error naming the file and line of a
+     *  malformed one. */
+    void readViewpoints(const std::string& path);
+    void writeViewpoints(const std::string& path) const;
 
     // --- messages for the status line (edits refused, files written)
     std::string message;

@@ -37,6 +37,7 @@ struct Options
     int width = loa::kDefaultWidth, height = loa::kDefaultHeight;
     std::string script;
     std::string save;
+    std::string viewpoints;
     bool noPanels = false;
     unsigned frames = 0;
 };
@@ -70,6 +71,11 @@ Options parse(int argc, char** argv)
                    "where Ctrl+S saves the scenario (.osgt, .osgb or .osgx; default NAME.osgt)")
         ->type_name("FILE")
         ->group(loa::kGroupOutput);
+    app.add_option(
+           "--viewpoints", o.viewpoints,
+           "read saved viewpoints from FILE and write every one saved with V there (text, atomically)")
+        ->type_name("FILE")
+        ->group(loa::kGroupCamera);
     app.add_flag("--no-panels", o.noPanels, "start with the panels hidden (Tab shows them)")
         ->group(loa::kGroupOptions);
     loa::addCount(app, "--frames", o.frames, 0, 1000000, "stop after N frames (0: run until closed)");
@@ -158,6 +164,11 @@ int run(const Options& o)
     for (const std::string& name : osgLoA::CityCameras::names())
         session.viewpoints.push_back(
             {name, osgLoA::CityCameras::compute(name, *session.getRoot(), aspect), false});
+    if (!o.viewpoints.empty())
+    {
+        session.readViewpoints(o.viewpoints);
+        session.viewpointsFile = o.viewpoints;
+    }
     if (!o.camera.empty())
         for (const auto& v : session.viewpoints)
             if (v.name == o.camera) loa::AuthoringHandler::goTo(viewer, v);
