@@ -792,6 +792,41 @@ TEST(ViewerSessionTest, RoutePointsFocusAndInspection)
     EXPECT_FALSE(session.press(*camera, 10, 10, 1));
 }
 
+TEST(ViewerSessionTest, ALibraryCircleIsMovedWhereTheSceneShowsIt)
+{
+    // circular-roi's circle is placed at the scene's centre with a radius of 0.14 times the
+    // scene's size: dragged in the view, it moves by the drag and keeps the radius it is drawn
+    // with (scene units), becoming absolute.
+    osg::ref_ptr<osg::Group> city = smallCity();
+    osg::ref_ptr<UsageScenario> start = ScenarioLibrary::createBuiltin("circular-roi");
+    loa::ViewerSession session(*city, *start, "built-in");
+    osg::ref_ptr<osg::Viewport> viewport = new osg::Viewport(0, 0, 1920, 1080);
+    const osg::Viewport& vp = *viewport;
+    const CameraPose pose = CityCameras::compute("top", *session.getRoot(), vp.width() / vp.height());
+    osg::ref_ptr<osg::Camera> camera = cameraAt(pose, vp);
+    session.getNode().evaluate(pose.eye);
+    const RegionOfInterest& placed = *session.getNode().getEvaluator()->getScenario()->getRegions()[0];
+    const osg::Vec2d centre = placed.getVertices()[0];
+    const double radius = placed.getRadius();
+    ASSERT_GT(radius, 10.0); // scene units, not the written 0.14
+    const osg::Vec3d w = windowOf(*camera, osg::Vec3d(centre.x(), centre.y(), 0.0));
+    session.mode = loa::ViewerSession::REGION;
+    ASSERT_TRUE(session.press(*camera, w.x(), w.y(), 1));
+    session.drag(*camera, w.x() + 50.0, w.y());
+    session.drag(*camera, w.x() + 100.0, w.y());
+    session.release(*camera, w.x() + 100.0, w.y());
+    const RegionOfInterest& moved = *session.getEditor().getScenario().getRegions()[0];
+    EXPECT_TRUE(moved.isResolved());
+    EXPECT_NEAR(moved.getRadius(), radius, 1e-9);
+    const FeaturePicker::Hit a =
+        FeaturePicker::pick(*camera, w.x(), w.y(), *session.getRoot(), session.getNode());
+    const FeaturePicker::Hit b =
+        FeaturePicker::pick(*camera, w.x() + 100.0, w.y(), *session.getRoot(), session.getNode());
+    EXPECT_NEAR(moved.getVertices()[0].x(), centre.x() + (b.scene.x() - a.scene.x()), 1e-6);
+    EXPECT_NEAR(moved.getVertices()[0].y(), centre.y() + (b.scene.y() - a.scene.y()), 1e-6);
+    EXPECT_EQ(session.getEditor().history().size(), 1u);
+}
+
 TEST(ViewerSessionTest, SavedViewpointsComeBack)
 {
     osg::ref_ptr<osg::Group> city = smallCity();

@@ -129,6 +129,19 @@ void ViewerSession::afterEdit()
     if (!savePathGiven) savePath = _node->getScenario()->getName() + ".osgt";
 }
 
+bool ViewerSession::fittedCircle(const std::string& name, osg::Vec2d& centre, double& radius) const
+{
+    for (const auto& r : fittedRegions())
+        if (r.valid() && r->getName() == name && r->getShape() == osgLoA::RegionOfInterest::CIRCLES &&
+            !r->getVertices().empty())
+        {
+            centre = r->getVertices()[0];
+            radius = r->getRadius();
+            return true;
+        }
+    return false;
+}
+
 const osgLoA::UsageScenario::Regions& ViewerSession::fittedRegions() const
 {
     const osgLoA::ScenarioEvaluator* e = _node->getEvaluator();
@@ -278,15 +291,15 @@ bool ViewerSession::press(const osg::Camera& camera, double x, double y, int but
     }
     if (mode == ROUTE)
     {
+        // A route point within kGrabPixels of the pointer (at the picked height) is grabbed.
+        const osg::NodePathList paths = _node->getParentalNodePaths(_root.get());
+        const osg::Matrixd toWorld = paths.empty() ? osg::Matrixd() : osg::computeLocalToWorld(paths.front());
         for (const auto& r : s.getRegions())
             if (r.valid() && r->getName() == "route")
                 for (unsigned i = 0; i < r->getVertices().size(); ++i)
                 {
                     const osg::Vec2d& v = r->getVertices()[i];
                     const osg::Vec3d p(v.x(), v.y(), hit.ground ? hit.scene.z() : 0.0);
-                    const osg::NodePathList paths = _node->getParentalNodePaths(_root.get());
-                    const osg::Matrixd toWorld =
-                        paths.empty() ? osg::Matrixd() : osg::computeLocalToWorld(paths.front());
                     if (pixelDistance(camera, p * toWorld, x, y) <= kGrabPixels) _routeVertex = int(i);
                 }
         if (_routeVertex >= 0 && button == 1) _editor->beginGesture();
@@ -309,10 +322,9 @@ bool ViewerSession::drag(const osg::Camera& camera, double x, double y)
             attempt(
                 [&]
                 {
-                    const auto& regions = _editor->getScenario().getRegions();
+                    osg::Vec2d centre;
                     double radius = 0.0;
-                    for (const auto& r : regions)
-                        if (r.valid() && r->getName() == _region) radius = r->getRadius();
+                    fittedCircle(_region, centre, radius);
                     _editor->placeCircle(_region, p + _grabOffset, radius);
                 });
         else if (_button == 1)
@@ -321,12 +333,10 @@ bool ViewerSession::drag(const osg::Camera& camera, double x, double y)
             attempt(
                 [&]
                 {
-                    double radius = 0.0;
                     osg::Vec2d centre;
-                    for (const auto& r : _editor->getScenario().getRegions())
-                        if (r.valid() && r->getName() == _region)
-                            radius = r->getRadius(), centre = r->getVertices()[0];
-                    _editor->setRegionFade(std::max(0.0, (p - centre).length() - radius));
+                    double radius = 0.0;
+                    if (fittedCircle(_region, centre, radius))
+                        _editor->setRegionFade(std::max(0.0, (p - centre).length() - radius));
                 });
         return true;
     }

@@ -135,6 +135,8 @@ private:
     void rewrap();
     /** The regions as the node placed them (scene coordinates), else as written. */
     const osgLoA::UsageScenario::Regions& fittedRegions() const;
+    /** The circle region of that name as placed (scene coordinates); false when none. */
+    bool fittedCircle(const std::string& name, osg::Vec2d& centre, double& radius) const;
     osg::Vec3d _lastEye;
     osgLoA::FeaturePicker::Hit pick(const osg::Camera& camera, double x, double y);
     std::string newCircleName() const;

@@ -122,15 +122,20 @@ void LoANode::refit()
         bind();
         return;
     }
-    // The matches (feature, configuration) the renderer's passes were built for.
-    std::vector<unsigned> before;
-    before.reserve(_evaluator->matches().size() + _evaluator->features().size());
-    for (const auto& f : _evaluator->features())
+    // The matches (feature, configuration) the renderer's passes were built for, before and after.
+    auto matchList = [this]
     {
-        before.push_back(f.numMatches);
-        for (unsigned k = 0; k < f.numMatches; ++k)
-            before.push_back(_evaluator->matchesOf(f)[k].configuration);
-    }
+        std::vector<unsigned> list;
+        list.reserve(_evaluator->matches().size() + _evaluator->features().size());
+        for (const auto& f : _evaluator->features())
+        {
+            list.push_back(f.numMatches);
+            for (unsigned k = 0; k < f.numMatches; ++k)
+                list.push_back(_evaluator->matchesOf(f)[k].configuration);
+        }
+        return list;
+    };
+    const std::vector<unsigned> before = matchList();
     try
     {
         _evaluator->bind(_scenario.get(), _index);
@@ -142,14 +147,7 @@ void LoANode::refit()
         _renderer->unbind();
         throw;
     }
-    std::vector<unsigned> after;
-    after.reserve(before.size());
-    for (const auto& f : _evaluator->features())
-    {
-        after.push_back(f.numMatches);
-        for (unsigned k = 0; k < f.numMatches; ++k)
-            after.push_back(_evaluator->matchesOf(f)[k].configuration);
-    }
+    const std::vector<unsigned> after = matchList();
     if (after != before)
     {
         OSG_INFO << "osgLoA::LoANode: the edit changed which configurations match; binding again"
