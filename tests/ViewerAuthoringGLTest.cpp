@@ -31,6 +31,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 
 using namespace osgLoA;
@@ -133,6 +134,27 @@ bool roofPoint(osg::Node& node, osg::Vec3d& point)
     point = v.roof.point;
     return v.roof.best > -1e300;
 }
+
+/** loa-viewer's session over the small demo city with a library scenario, seen by the top
+ *  camera at width x height, evaluated once from there (what the viewer's first frame does). */
+struct SessionInView
+{
+    osg::ref_ptr<osg::Group> city = smallCity();
+    osg::ref_ptr<UsageScenario> start;
+    std::unique_ptr<loa::ViewerSession> session;
+    osg::ref_ptr<osg::Viewport> viewport;
+    CameraPose pose;
+    osg::ref_ptr<osg::Camera> camera;
+    SessionInView(const std::string& scenario, int width, int height)
+        : start(ScenarioLibrary::createBuiltin(scenario)),
+          session(new loa::ViewerSession(*city, *start, "built-in")),
+          viewport(new osg::Viewport(0, 0, width, height))
+    {
+        pose = CityCameras::compute("top", *session->getRoot(), double(width) / double(height));
+        camera = cameraAt(pose, *viewport);
+        session->getNode().evaluate(pose.eye);
+    }
+};
 
 const Feature* firstOfType(const LoANode& node, FeatureType type)
 {
@@ -649,14 +671,11 @@ TEST(ViewerSessionTest, TheCircleOfInterestAuthoredWithThePointer)
 {
     // What a user does in loa-viewer (region mode): drag a circle on the ground, make the circle
     // scenario (Shift+R), drag its fade with the right button, save; then undo it all.
-    osg::ref_ptr<osg::Group> city = smallCity();
-    osg::ref_ptr<UsageScenario> start = ScenarioLibrary::createBuiltin("distance");
-    loa::ViewerSession session(*city, *start, "built-in");
-    osg::ref_ptr<osg::Viewport> viewport = new osg::Viewport(0, 0, 1920, 1080);
-    const osg::Viewport& vp = *viewport;
-    const CameraPose pose = CityCameras::compute("top", *session.getRoot(), vp.width() / vp.height());
-    osg::ref_ptr<osg::Camera> camera = cameraAt(pose, vp);
-    session.getNode().evaluate(pose.eye);
+    SessionInView view("distance", 1920, 1080);
+    loa::ViewerSession& session = *view.session;
+    const osg::Viewport& vp = *view.viewport;
+    const CameraPose& pose = view.pose;
+    const osg::ref_ptr<osg::Camera> camera = view.camera;
     session.mode = loa::ViewerSession::REGION;
     const double x0 = 960.5, y0 = 540.5, x1 = 1140.5, x2 = 1260.5;
     ASSERT_TRUE(session.press(*camera, x0, y0, 1));
@@ -704,20 +723,16 @@ TEST(ViewerSessionTest, TheCircleOfInterestAuthoredWithThePointer)
     for (int i = 0; i < 3; ++i)
         EXPECT_TRUE(session.undo());
     EXPECT_TRUE(s.getRegions().empty());
-    EXPECT_EQ(s.getConfigurations().size(), start->getConfigurations().size());
+    EXPECT_EQ(s.getConfigurations().size(), view.start->getConfigurations().size());
     EXPECT_TRUE(s.getConfigurations()[0]->getMetric(SaliencyMetric::VIEW_DISTANCE));
 }
 
 TEST(ViewerSessionTest, RoutePointsFocusAndInspection)
 {
-    osg::ref_ptr<osg::Group> city = smallCity();
-    osg::ref_ptr<UsageScenario> start = ScenarioLibrary::createBuiltin("distance");
-    loa::ViewerSession session(*city, *start, "built-in");
-    osg::ref_ptr<osg::Viewport> viewport = new osg::Viewport(0, 0, 641, 359);
-    const osg::Viewport& vp = *viewport;
-    const CameraPose pose = CityCameras::compute("top", *session.getRoot(), vp.width() / vp.height());
-    osg::ref_ptr<osg::Camera> camera = cameraAt(pose, vp);
-    session.getNode().evaluate(pose.eye);
+    SessionInView view("distance", 641, 359);
+    loa::ViewerSession& session = *view.session;
+    const osg::Viewport& vp = *view.viewport;
+    const osg::ref_ptr<osg::Camera> camera = view.camera;
     auto click = [&](double x, double y, int button)
     {
         session.press(*camera, x, y, button);
@@ -797,14 +812,9 @@ TEST(ViewerSessionTest, ALibraryCircleIsMovedWhereTheSceneShowsIt)
     // circular-roi's circle is placed at the scene's centre with a radius of 0.14 times the
     // scene's size: dragged in the view, it moves by the drag and keeps the radius it is drawn
     // with (scene units), becoming absolute.
-    osg::ref_ptr<osg::Group> city = smallCity();
-    osg::ref_ptr<UsageScenario> start = ScenarioLibrary::createBuiltin("circular-roi");
-    loa::ViewerSession session(*city, *start, "built-in");
-    osg::ref_ptr<osg::Viewport> viewport = new osg::Viewport(0, 0, 1920, 1080);
-    const osg::Viewport& vp = *viewport;
-    const CameraPose pose = CityCameras::compute("top", *session.getRoot(), vp.width() / vp.height());
-    osg::ref_ptr<osg::Camera> camera = cameraAt(pose, vp);
-    session.getNode().evaluate(pose.eye);
+    SessionInView view("circular-roi", 1920, 1080);
+    loa::ViewerSession& session = *view.session;
+    const osg::ref_ptr<osg::Camera> camera = view.camera;
     const RegionOfInterest& placed = *session.getNode().getEvaluator()->getScenario()->getRegions()[0];
     const osg::Vec2d centre = placed.getVertices()[0];
     const double radius = placed.getRadius();
